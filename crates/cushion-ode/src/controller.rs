@@ -1,0 +1,128 @@
+//! Step-size control: Hairer's PI controller for DOPRI5 and his initial step selection.
+
+/// PI controller (Hairer's DOPRI5: `fac = err^(0.2 - 0.75 beta) / facold^beta`, safety 0.9,
+/// ratio within [0.2, 10], no growth right after a rejection).
+#[derive(Clone, Copy, Debug)]
+pub struct PiController {
+    pub safety: f64,
+    pub beta: f64,
+    pub min_ratio: f64,
+    pub max_ratio: f64,
+    /// Exponent `1/order - 0.75 beta`.
+    expo: f64,
+    facold: f64,
+    last_rejected: bool,
+}
+
+impl PiController {
+    /// For an embedded pair whose lower order is `order - 1` (`order` 5 for DOPRI5).
+    pub fn new(order: u32, safety: f64, beta: f64, min_ratio: f64, max_ratio: f64) -> Self {
+        PiController {
+            safety,
+            beta,
+            min_ratio,
+            max_ratio,
+            expo: 1.0 / order as f64 - 0.75 * beta,
+            facold: 1e-4,
+            last_rejected: false,
+        }
+    }
+
+    /// Forget the history (after an event changed the state).
+    pub fn reset(&mut self) {
+        self.facold = 1e-4;
+        self.last_rejected = false;
+    }
+
+    /// Given the scaled error norm `err` of a step of size `h`, say whether it is accepted and
+    /// which step size comes next.
+    pub fn next(&mut self, err: f64, h: f64) -> (bool, f64) {
+        let fac11 = err.powf(self.expo);
+        if err <= 1.0 {
+            let fac = fac11 / self.facold.powf(self.beta);
+            let fac = (fac / self.safety).clamp(1.0 / self.max_ratio, 1.0 / self.min_ratio);
+            let mut h_new = h / fac;
+            self.facold = err.max(1e-4);
+            if self.last_rejected {
+                h_new = h_new.min(h);
+            }
+            self.last_rejected = false;
+            (true, h_new)
+        } else {
+            self.last_rejected = true;
+            (false, h / (fac11 / self.safety).min(1.0 / self.min_ratio))
+        }
+    }
+
+    /// A step with a non-finite stage: reject it and shrink by the largest allowed factor.
+    pub fn reject_non_finite(&mut self, h: f64) -> f64 {
+        self.last_rejected = true;
+        h * self.min_ratio
+    }
+}
+
+/// Hairer's initial step selection (`hinit` of DOPRI5). `f0 = f(t0, y0)`; `sq` scales a vector
+/// by the tolerances and returns its sum of squares; `f_at(h, y) -> f(t0 + h, y)` costs one
+/// evaluation. Returns a positive step no larger than `h_max`.
+pub fn initial_step<const N: usize>(
+    y0: &crate::State<N>,
+    f0: &crate::State<N>,
+    order: u32,
+    h_max: f64,
+    sq: impl Fn(&crate::State<N>, &crate::State<N>) -> f64,
+    f_at: impl FnOnce(f64, &crate::State<N>) -> crate::State<N>,
+) -> f64 {
+    let dnf = sq(f0, y0);
+    let dny = sq(y0, y0);
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+    h = h.min(h_max);
+    let y1 = y0 + f0 * h;
+    let f1 = f_at(h, &y1);
+    let der2 = (sq(&(f1 - f0), y0)).sqrt() / h;
+    let der12 = der2.abs().max(dnf.sqrt());
+    let h1 = if der12 <= 1e-15 {
+        (h.abs() * 1e-3).max(1e-6)
+    } else {
+        (0.01 / der12).powf(1.0 / order as f64)
+    };
+    let h = (100.0 * h.abs()).min(h1).min(h_max);
+    if h.is_finite() && h > 0.0 {
+        h
+    } else {
+        h_max.min(1e-6)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn accepts_small_errors_and_grows_at_most_tenfold() {
+        let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
+        let (ok, h) = c.next(1e-12, 1.0);
+        assert!(ok);
+        assert!((h - 10.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn rejects_large_errors_and_does_not_grow_after_a_rejection() {
+        let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
+        let (ok, h) = c.next(1e6, 1.0);
+        assert!(!ok);
+        assert!((h - 0.2).abs() < 1e-12, "shrinks by at most 5: {h}");
+        let (ok, h2) = c.next(1e-12, h);
+        assert!(ok);
+        assert_eq!(h2, h, "no growth on the step after a rejection");
+    }
+
+    #[test]
+    fn error_of_one_gives_the_safety_factor_at_steady_state() {
+        // With facold = 1 and err = 1, fac = 1/0.9: h_new = 0.9 h.
+        let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
+        c.facold = 1.0;
+        let (ok, h) = c.next(1.0, 1.0);
+        assert!(ok);
+        assert!((h - 0.9).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,37 @@
+//! `cushion-ode`: an adaptive Dormand–Prince 5(4) integrator with dense output, event
+//! detection and location, time stops and Hairer's stiffness test, plus fixed-step classical
+//! RK4 and explicit Euler behind the same interface.
+//!
+//! It knows ODEs and nothing else. The shape follows SciPy's `integrate/_ivp` and
+//! DifferentialEquations.jl: a system ([`OdeSystem`]) is the problem, [`SolverOptions`] picks the
+//! method and its settings, [`solve`] orchestrates, and a [`Solution`] carries the final state,
+//! the recorded trajectory, the event log and the statistics. Stepping ([`stepper`]), dense
+//! output ([`dense`]), step-size control ([`controller`]), events ([`events`]) and the stiffness
+//! test ([`stiffness`]) each live in their own file; the Butcher tableaus are data
+//! ([`tableau`]).
+//!
+//! The state is a fixed-size, stack-allocated `nalgebra::SVector<f64, N>`; nothing is allocated
+//! on the heap inside the step loop (the event log and the recorded output grow only when an
+//! event fires or a point is recorded).
+
+pub mod controller;
+pub mod dense;
+pub mod events;
+mod norm;
+pub mod options;
+pub mod solution;
+mod solve;
+pub mod stepper;
+pub mod stiffness;
+pub mod system;
+pub mod tableau;
+pub mod test_models;
+
+pub use dense::DenseOutput;
+pub use options::{Method, Output, SolverOptions, StiffnessAction, Tolerance};
+pub use solution::{EventRecord, Solution, Stats, Status};
+pub use solve::solve;
+pub use system::{Control, Direction, EventAction, OdeSystem, Step, MAX_EVENTS};
+
+/// The state vector: `N` numbers on the stack.
+pub type State<const N: usize> = nalgebra::SVector<f64, N>;

@@ -1,0 +1,36 @@
+//! Hairer's error norm: RMS of `e_i / (atol_i + rtol_i * max(|y0_i|, |y1_i|))`.
+
+use crate::State;
+
+/// Tolerances resolved to one number per component.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Weights<const N: usize> {
+    pub rtol: State<N>,
+    pub atol: State<N>,
+}
+
+impl<const N: usize> Weights<N> {
+    /// RMS norm of `err` scaled by `atol + rtol * max(|y0|, |y1|)`.
+    #[inline]
+    pub fn error_norm(&self, err: &State<N>, y0: &State<N>, y1: &State<N>) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..N {
+            let sk = self.atol[i] + self.rtol[i] * y0[i].abs().max(y1[i].abs());
+            let q = err[i] / sk;
+            sum += q * q;
+        }
+        (sum / N as f64).sqrt()
+    }
+
+    /// Sum of squares of `v / (atol + rtol * |y|)` (used by the initial step selection).
+    #[inline]
+    pub fn scaled_sq(&self, v: &State<N>, y: &State<N>) -> f64 {
+        let mut sum = 0.0;
+        for i in 0..N {
+            let sk = self.atol[i] + self.rtol[i] * y[i].abs();
+            let q = v[i] / sk;
+            sum += q * q;
+        }
+        sum
+    }
+}

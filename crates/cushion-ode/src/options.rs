@@ -1,0 +1,139 @@
+//! Solver settings: the method and everything that steers it.
+
+/// The integration method.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// Adaptive Dormand–Prince 5(4) (Hairer's DOPRI5): FSAL, PI control, 4th-order dense output.
+    Dp5,
+    /// Classical 4th-order Runge–Kutta with a fixed step `SolverOptions::fixed_step`.
+    Rk4,
+    /// Explicit Euler with a fixed step `SolverOptions::fixed_step`.
+    Euler,
+}
+
+impl Method {
+    /// The name users type (`dp5`, `rk4`, `euler`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Dp5 => "dp5",
+            Method::Rk4 => "rk4",
+            Method::Euler => "euler",
+        }
+    }
+
+    /// Parse a user's name; `None` if unknown.
+    pub fn from_name(s: &str) -> Option<Method> {
+        match s {
+            "dp5" => Some(Method::Dp5),
+            "rk4" => Some(Method::Rk4),
+            "euler" => Some(Method::Euler),
+            _ => None,
+        }
+    }
+
+    /// Whether the step size adapts to an error estimate.
+    pub fn is_adaptive(self) -> bool {
+        matches!(self, Method::Dp5)
+    }
+}
+
+/// A tolerance: one number for every component, or one per component.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Tolerance {
+    Scalar(f64),
+    PerComponent(Vec<f64>),
+}
+
+impl Tolerance {
+    /// The tolerance of component `i`.
+    pub fn get(&self, i: usize) -> f64 {
+        match self {
+            Tolerance::Scalar(v) => *v,
+            Tolerance::PerComponent(v) => v.get(i).copied().unwrap_or(f64::NAN),
+        }
+    }
+}
+
+impl From<f64> for Tolerance {
+    fn from(v: f64) -> Self {
+        Tolerance::Scalar(v)
+    }
+}
+
+/// What Hairer's stiffness test does once it fires.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StiffnessAction {
+    /// Do not test.
+    Off,
+    /// Record it in the statistics (with the time it started) and go on.
+    Warn,
+    /// Record it and stop with status `Stiff`.
+    Stop,
+}
+
+/// Which points the solution records.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Output {
+    /// Only the final state.
+    None,
+    /// Every accepted step's end (and the start).
+    Steps,
+    /// These times (ascending), from the dense output; times outside `[t0, t_end]` are skipped.
+    Times(Vec<f64>),
+}
+
+/// Every setting of a solve. `Default` gives Hairer's defaults with `rtol = 1e-6`, `atol = 1e-9`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolverOptions {
+    pub method: Method,
+    /// Relative tolerance.
+    pub rtol: Tolerance,
+    /// Absolute tolerance, in the units of each state component.
+    pub atol: Tolerance,
+    /// First step size; `None` chooses it by Hairer's initial step selection.
+    pub h0: Option<f64>,
+    /// Largest step size (default: the whole interval).
+    pub h_max: f64,
+    /// The step of the fixed-step methods (RK4, Euler).
+    pub fixed_step: f64,
+    /// Most steps (accepted and rejected) before giving up with `MaxSteps`.
+    pub max_steps: u64,
+    /// Safety factor of the step controller (Hairer: 0.9).
+    pub safety: f64,
+    /// PI controller's `beta` (Hairer: 0.04).
+    pub beta: f64,
+    /// Bounds of the step ratio `h_new / h` (Hairer: 0.2 and 10).
+    pub min_ratio: f64,
+    pub max_ratio: f64,
+    /// Hairer's stiffness test.
+    pub stiffness: StiffnessAction,
+    /// Times where `f` is not smooth: stepped onto exactly, never across.
+    pub time_stops: Vec<f64>,
+    /// Interior points of the dense output checked for sign changes of event functions in each
+    /// step (besides its two ends), so that two crossings inside one step are both found.
+    pub event_subdivisions: usize,
+    /// Which points to record.
+    pub output: Output,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            method: Method::Dp5,
+            rtol: Tolerance::Scalar(1e-6),
+            atol: Tolerance::Scalar(1e-9),
+            h0: None,
+            h_max: f64::INFINITY,
+            fixed_step: 1e-4,
+            max_steps: 1_000_000,
+            safety: 0.9,
+            beta: 0.04,
+            min_ratio: 0.2,
+            max_ratio: 10.0,
+            stiffness: StiffnessAction::Warn,
+            time_stops: Vec::new(),
+            event_subdivisions: 4,
+            output: Output::None,
+        }
+    }
+}

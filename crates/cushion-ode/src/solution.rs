@@ -1,0 +1,79 @@
+//! What a solve returns.
+
+use crate::State;
+
+/// How a solve ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// Reached `t_end`.
+    Success,
+    /// An event handler (or an early-end request) stopped it.
+    StoppedByEvent,
+    /// `max_steps` steps were taken.
+    MaxSteps,
+    /// The step size fell below what `t` can resolve.
+    StepTooSmall,
+    /// An accepted state (or the initial one) is not finite.
+    NonFinite,
+    /// The stiffness test fired and the settings say stop.
+    Stiff,
+    /// The options or the initial state are unusable (non-positive tolerance, `t_end < t0`, ...).
+    InvalidInput,
+}
+
+impl Status {
+    /// True for the two ends that are not failures.
+    pub fn is_ok(self) -> bool {
+        matches!(self, Status::Success | Status::StoppedByEvent)
+    }
+}
+
+/// Counts of the work done.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected steps (error too large, or a non-finite stage).
+    pub rejected: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evals: u64,
+    /// Events handled (crossings located), not counting time stops.
+    pub events: u64,
+    /// Time stops stepped onto.
+    pub time_stops: u64,
+    /// Whether the stiffness test fired.
+    pub stiff: bool,
+    /// When the stiff run of steps that made it fire began.
+    pub stiff_since: Option<f64>,
+}
+
+/// One entry of the event log.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EventRecord<const N: usize> {
+    /// Time of the event (on the far side of the crossing).
+    pub t: f64,
+    /// Index of the event function.
+    pub index: usize,
+    /// `true` if `g` rose through zero, `false` if it fell.
+    pub rising: bool,
+    /// The state at `t`, before the handler changed anything.
+    pub state: State<N>,
+}
+
+/// The result of a solve.
+#[derive(Clone, Debug)]
+pub struct Solution<const N: usize> {
+    pub status: Status,
+    /// A sentence for humans when the status is not `Success`.
+    pub message: String,
+    /// Time reached.
+    pub t: f64,
+    /// State at `t`.
+    pub y: State<N>,
+    /// Recorded times and states (see `SolverOptions::output`).
+    pub ts: Vec<f64>,
+    pub ys: Vec<State<N>>,
+    /// Every located event, in time order.
+    pub events: Vec<EventRecord<N>>,
+    pub stats: Stats,
+}

@@ -1,0 +1,126 @@
+//! The problem: a right-hand side, its event functions and what happens at them.
+
+use crate::dense::DenseOutput;
+use crate::State;
+
+/// At most this many event functions per system (they are evaluated into a stack array).
+pub const MAX_EVENTS: usize = 16;
+
+/// Which sign changes of an event function `g` count.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Direction {
+    /// `g` goes from negative to zero or positive.
+    Rising,
+    /// `g` goes from positive to zero or negative.
+    Falling,
+    /// Either.
+    Both,
+}
+
+impl Direction {
+    /// Does a change from `a` (the value before) to `b` (the value after) count?
+    /// A function that is exactly zero before does not fire (CVODE's rule): `a` must be strictly
+    /// on one side.
+    #[inline]
+    pub fn crosses(self, a: f64, b: f64) -> bool {
+        let rising = a < 0.0 && b >= 0.0;
+        let falling = a > 0.0 && b <= 0.0;
+        match self {
+            Direction::Rising => rising,
+            Direction::Falling => falling,
+            Direction::Both => rising || falling,
+        }
+    }
+}
+
+/// What the integrator does after an event (or a time stop) has been handled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EventAction {
+    /// Record it and keep going; the step stands, later crossings inside it are still found.
+    Continue,
+    /// The handler changed the state and/or the regime of the right-hand side: the step is cut
+    /// at the event, `f` is evaluated again and the step size is selected anew.
+    Restart,
+    /// Record it and end the integration here (status `StoppedByEvent`).
+    Stop,
+}
+
+/// What a handler may ask of the integrator besides its return value.
+#[derive(Debug)]
+pub struct Control {
+    pub(crate) new_time_stops: [f64; 8],
+    pub(crate) n_new_time_stops: usize,
+    pub(crate) stop_requested: bool,
+}
+
+impl Control {
+    pub(crate) fn new() -> Self {
+        Control { new_time_stops: [0.0; 8], n_new_time_stops: 0, stop_requested: false }
+    }
+
+    /// Step onto time `t` exactly (a point where the right-hand side is not smooth), never
+    /// across it. Times at or before the current time are ignored. At most 8 per call.
+    pub fn add_time_stop(&mut self, t: f64) {
+        if self.n_new_time_stops < self.new_time_stops.len() {
+            self.new_time_stops[self.n_new_time_stops] = t;
+            self.n_new_time_stops += 1;
+        }
+    }
+
+    /// End the integration after this step (status `StoppedByEvent`); used for early ends.
+    pub fn stop(&mut self) {
+        self.stop_requested = true;
+    }
+}
+
+/// One accepted step as an observer sees it: `[t0, t1]`, its end states, and the dense output,
+/// valid on the whole interval.
+pub struct Step<'a, const N: usize> {
+    pub t0: f64,
+    pub t1: f64,
+    pub y0: &'a State<N>,
+    pub y1: &'a State<N>,
+    pub dense: &'a DenseOutput<N>,
+}
+
+impl<const N: usize> Step<'_, N> {
+    /// The state at `t` in `[t0, t1]`, from the dense output.
+    #[inline]
+    pub fn at(&self, t: f64) -> State<N> {
+        self.dense.eval(t)
+    }
+}
+
+/// An ODE `y' = f(t, y)` with optional events. The system may carry a discrete regime (which
+/// branch of a piecewise law is active); only the handlers change it.
+pub trait OdeSystem<const N: usize> {
+    /// `f(t, y)` in the current regime.
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N>;
+
+    /// How many event functions there are (at most [`MAX_EVENTS`]).
+    fn event_count(&self) -> usize {
+        0
+    }
+
+    /// Evaluate every event function `g_i(t, y)` into `g[..event_count()]`.
+    fn events(&self, _t: f64, _y: &State<N>, _g: &mut [f64]) {}
+
+    /// Which sign changes of `g_i` count.
+    fn event_direction(&self, _i: usize) -> Direction {
+        Direction::Both
+    }
+
+    /// Called at a located crossing of `g_i`, at time `t` (on the far side of the crossing).
+    /// It may change `y` and the regime; it must say so by returning `Restart`.
+    fn on_event(&mut self, _i: usize, _t: f64, _y: &mut State<N>, _ctl: &mut Control) -> EventAction {
+        EventAction::Stop
+    }
+
+    /// Called when a time stop is reached exactly. `f` is always evaluated again afterwards.
+    fn on_time_stop(&mut self, _t: f64, _y: &mut State<N>, _ctl: &mut Control) -> EventAction {
+        EventAction::Continue
+    }
+
+    /// Called after every accepted step (after events cut it); may call `ctl.stop()`.
+    fn on_step(&mut self, _step: &Step<'_, N>, _ctl: &mut Control) {}
+}

@@ -1,0 +1,8 @@
+//! Classic problems every method is tested against (diffsol's `test_models/` idea): each with
+//! its known solution or reference values.
+
+pub mod arenstorf;
+pub mod bouncing_ball;
+pub mod exponential;
+pub mod robertson;
+pub mod van_der_pol;
