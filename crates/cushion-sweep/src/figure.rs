@@ -1,0 +1,338 @@
+//! The paper's figure 3 for one run, as SVG: four panels over time in ms:
+//!
+//! 1. positions of robot flange, tool and object (mm),
+//! 2. their velocities (m/s),
+//! 3. gas pressure `p1` (kPa; the panel says "no gas" for bistable and rigid scenes),
+//! 4. force of the module on the robot `F_r` and the tool-object contact force `F_c` (N).
+//!
+//! The detection time (sensor switching) is a dashed red vertical line in every panel, the
+//! brake start a dashed grey one.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use cushion_model::{Summary, Trajectory, TrajectoryPoint};
+use plotters::prelude::*;
+
+use crate::trajectory_csv::write_atomically;
+
+const ROBOT: RGBColor = RGBColor(31, 119, 180);
+const TOOL: RGBColor = RGBColor(255, 127, 14);
+const OBJECT: RGBColor = RGBColor(44, 160, 44);
+const DETECT: RGBColor = RGBColor(214, 39, 40);
+const BRAKE: RGBColor = RGBColor(110, 110, 110);
+const CONTACT: RGBColor = RGBColor(148, 103, 189);
+
+/// Figure size in pixels (width, height).
+pub const SIZE: (u32, u32) = (1000, 1300);
+
+/// One curve: label, colour, value of a point in plot units.
+struct Curve {
+    label: &'static str,
+    color: RGBColor,
+    value: fn(&TrajectoryPoint) -> f64,
+}
+
+struct Panel {
+    caption: &'static str,
+    y_desc: &'static str,
+    curves: Vec<Curve>,
+    /// Shown instead of the curves when no curve has a finite value.
+    absent: &'static str,
+}
+
+fn panels() -> Vec<Panel> {
+    vec![
+        Panel {
+            caption: "Positions",
+            y_desc: "position [mm]",
+            curves: vec![
+                Curve { label: "robot flange x_r", color: ROBOT, value: |p| p.x_r * 1e3 },
+                Curve { label: "tool x_t", color: TOOL, value: |p| p.x_t * 1e3 },
+                Curve { label: "object x_p", color: OBJECT, value: |p| p.x_p * 1e3 },
+            ],
+            absent: "no positions",
+        },
+        Panel {
+            caption: "Velocities",
+            y_desc: "velocity [m/s]",
+            curves: vec![
+                Curve { label: "robot flange v_r", color: ROBOT, value: |p| p.v_r },
+                Curve { label: "tool v_t", color: TOOL, value: |p| p.v_t },
+                Curve { label: "object v_p", color: OBJECT, value: |p| p.v_p },
+            ],
+            absent: "no velocities",
+        },
+        Panel {
+            caption: "Gas pressure",
+            y_desc: "pressure p1 [kPa]",
+            curves: vec![Curve { label: "gas pressure p1", color: ROBOT, value: |p| p.p1 * 1e-3 }],
+            absent: "no gas in this scene (n/a)",
+        },
+        Panel {
+            caption: "Forces",
+            y_desc: "force [N]",
+            curves: vec![
+                Curve { label: "force on the robot F_r", color: ROBOT, value: |p| p.f_r },
+                Curve { label: "contact force tool-object F_c", color: CONTACT, value: |p| p.f_c },
+            ],
+            absent: "no forces",
+        },
+    ]
+}
+
+/// Draw figure 3 of one run as SVG text. `title` heads the figure (e.g. module and dead time).
+pub fn render_svg(trajectory: &Trajectory, summary: &Summary, title: &str) -> io::Result<String> {
+    let pts = &trajectory.points;
+    if pts.is_empty() {
+        return Err(io::Error::other("cannot plot an empty trajectory"));
+    }
+    let t0 = pts.first().map(|p| p.t * 1e3).unwrap_or(0.0);
+    let mut t1 = pts.last().map(|p| p.t * 1e3).unwrap_or(1.0);
+    if !(t1 > t0) {
+        t1 = t0 + 1.0;
+    }
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        root.fill(&WHITE).map_err(draw_err)?;
+        let body = root
+            .titled(title, ("sans-serif", 22).into_font().color(&BLACK))
+            .map_err(draw_err)?;
+        let areas = body.split_evenly((4, 1));
+        for (area, panel) in areas.iter().zip(panels()) {
+            draw_panel(area, &panel, pts, (t0, t1), summary)?;
+        }
+        root.present().map_err(draw_err)?;
+    }
+    Ok(svg)
+}
+
+/// Draw figure 3 of one run into an SVG file (atomically).
+pub fn write_svg(path: &Path, trajectory: &Trajectory, summary: &Summary, title: &str) -> io::Result<()> {
+    let svg = render_svg(trajectory, summary, title)?;
+    write_atomically(path, |w| w.write_all(svg.as_bytes()))
+}
+
+fn draw_err<E: std::error::Error + Send + Sync + 'static>(e: E) -> io::Error {
+    io::Error::other(format!("drawing the figure: {e}"))
+}
+
+/// Finite (min, max) of the panel's curves, padded; `None` when nothing is finite.
+fn y_range(panel: &Panel, pts: &[TrajectoryPoint]) -> Option<(f64, f64)> {
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for c in &panel.curves {
+        for p in pts {
+            let v = (c.value)(p);
+            if v.is_finite() {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+    }
+    if !lo.is_finite() {
+        return None;
+    }
+    let span = hi - lo;
+    let pad = if span > 0.0 { 0.06 * span } else { (lo.abs() * 0.1).max(1e-3) };
+    Some((lo - pad, hi + pad))
+}
+
+fn draw_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    panel: &Panel,
+    pts: &[TrajectoryPoint],
+    (t0, t1): (f64, f64),
+    summary: &Summary,
+) -> io::Result<()>
+where
+    DB::ErrorType: 'static,
+{
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| io::Error::other(format!("drawing the figure: {e:?}"));
+    let range = y_range(panel, pts);
+    let (y0, y1) = range.unwrap_or((0.0, 1.0));
+    let mut chart = ChartBuilder::on(area)
+        .caption(panel.caption, ("sans-serif", 17).into_font())
+        .margin_left(10)
+        .margin_right(25)
+        .margin_top(5)
+        .margin_bottom(5)
+        .x_label_area_size(40)
+        .y_label_area_size(75)
+        .build_cartesian_2d(t0..t1, y0..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .x_desc("time [ms]")
+        .y_desc(panel.y_desc)
+        .x_labels(12)
+        .y_labels(6)
+        .light_line_style(RGBColor(235, 235, 235))
+        .bold_line_style(RGBColor(205, 205, 205))
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 14))
+        .x_label_formatter(&|v| format_tick(*v))
+        .y_label_formatter(&|v| format_tick(*v))
+        .draw()
+        .map_err(err)?;
+
+    if range.is_none() {
+        let x = t0 + 0.35 * (t1 - t0);
+        chart
+            .draw_series(std::iter::once(Text::new(
+                panel.absent,
+                (x, 0.55),
+                ("sans-serif", 18).into_font().color(&BRAKE),
+            )))
+            .map_err(err)?;
+    } else {
+        for c in &panel.curves {
+            // Break the line where the value is absent (NaN).
+            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
+            for p in pts {
+                let v = (c.value)(p);
+                if v.is_finite() {
+                    segments.last_mut().unwrap().push((p.t * 1e3, v));
+                } else if !segments.last().unwrap().is_empty() {
+                    segments.push(Vec::new());
+                }
+            }
+            if segments.iter().all(|s| s.is_empty()) {
+                continue;
+            }
+            let color = c.color;
+            let mut labelled = false;
+            for seg in segments.into_iter().filter(|s| !s.is_empty()) {
+                let anno = chart
+                    .draw_series(LineSeries::new(seg, color.stroke_width(2)))
+                    .map_err(err)?;
+                if !labelled {
+                    anno.label(c.label).legend(move |(x, y)| {
+                        PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
+                    });
+                    labelled = true;
+                }
+            }
+        }
+    }
+
+    for (t, label, color) in [
+        (summary.t_detect, "detection", DETECT),
+        (summary.t_brake, "brake start", BRAKE),
+    ] {
+        let Some(t) = t.filter(|t| t.is_finite()) else { continue };
+        let x = t * 1e3;
+        if x < t0 || x > t1 {
+            continue;
+        }
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(x, y0), (x, y1)],
+                7,
+                5,
+                color.stroke_width(2),
+            ))
+            .map_err(err)?
+            .label(format!("{label} ({})", format_ms(t)))
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + PathElement::new(vec![(0, 0), (8, 0)], color.stroke_width(2))
+                    + PathElement::new(vec![(13, 0), (21, 0)], color.stroke_width(2))
+            });
+    }
+
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(160, 160, 160))
+        .label_font(("sans-serif", 13))
+        .draw()
+        .map_err(err)?;
+    Ok(())
+}
+
+fn format_ms(t: f64) -> String {
+    format!("{:.1} ms", t * 1e3)
+}
+
+/// Tick labels: few digits, no float noise (0.30000000000000004 -> 0.3).
+fn format_tick(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".to_string()
+    } else if a >= 1e5 || a < 1e-3 {
+        format!("{v:.1e}")
+    } else {
+        let s = format!("{v:.3}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s == "-0" { "0".to_string() } else { s.to_string() }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn traj(gas: bool) -> Trajectory {
+        let points = (0..=300)
+            .map(|i| {
+                let t = i as f64 * 1e-3;
+                TrajectoryPoint {
+                    t,
+                    x_r: t,
+                    v_r: if t < 0.08 { 1.0 } else { (1.0 - 10.0 * (t - 0.08)).max(0.0) },
+                    x_t: t - 2e-3 * (t * 30.0).sin().abs(),
+                    v_t: 0.8,
+                    x_p: 1e-3 + 0.5 * t,
+                    v_p: if t < 0.01 { 0.0 } else { 0.6 },
+                    s: 1e-3,
+                    p1: if gas { 1000.0 + 5e4 * (-(t - 0.02).powi(2) / 1e-4).exp() } else { f64::NAN },
+                    f_c: (40.0 * (-(t - 0.01).powi(2) / 1e-6).exp()).max(0.0),
+                    f_r: -30.0 * (-(t - 0.01).powi(2) / 1e-6).exp() + 8.0 * (-(t - 0.15).powi(2) / 1e-5).exp(),
+                }
+            })
+            .collect();
+        Trajectory { points }
+    }
+
+    fn summary() -> Summary {
+        let mut s = Summary::invalid("");
+        s.t_detect = Some(0.0105);
+        s.t_brake = Some(0.0805);
+        s
+    }
+
+    #[test]
+    fn svg_has_four_panels_and_markers() {
+        let svg = render_svg(&traj(true), &summary(), "hydraulic, dead time 70 ms").unwrap();
+        assert!(svg.starts_with("<svg"));
+        assert!(svg.trim_end().ends_with("</svg>"));
+        for text in ["Positions", "Velocities", "Gas pressure", "Forces", "time [ms]", "detection (10.5 ms)", "force on the robot F_r"] {
+            assert!(svg.contains(text), "missing {text}");
+        }
+        if let Ok(dir) = std::env::var("CUSHION_FIGURE_DIR") {
+            std::fs::write(Path::new(&dir).join("figure_test.svg"), &svg).unwrap();
+        }
+    }
+
+    #[test]
+    fn no_gas_says_so() {
+        let svg = render_svg(&traj(false), &summary(), "bistable").unwrap();
+        assert!(svg.contains("no gas in this scene"));
+    }
+
+    #[test]
+    fn empty_trajectory_is_an_error() {
+        assert!(render_svg(&Trajectory::default(), &summary(), "x").is_err());
+    }
+
+    #[test]
+    fn ticks_are_short() {
+        assert_eq!(format_tick(0.30000000000000004), "0.3");
+        assert_eq!(format_tick(-0.0), "0");
+        assert_eq!(format_tick(25.0), "25");
+        assert_eq!(format_tick(2e-5), "2.0e-5");
+    }
+}
