@@ -117,6 +117,9 @@ pub trait OdeSystem<const N: usize> {
     }
 
     /// Called when a time stop is reached exactly. `f` is always evaluated again afterwards.
+    /// The step that lands on a stop evaluates `f` at the stop's time, so a right-hand side
+    /// that jumps there must switch its regime here rather than by comparing `t`; one that is
+    /// only kinked (continuous) may compare `t`.
     fn on_time_stop(&mut self, _t: f64, _y: &mut State<N>, _ctl: &mut Control) -> EventAction {
         EventAction::Continue
     }
