@@ -1,0 +1,28 @@
+//! Run one scene and print its summary and event log: `cargo run -p cushion-model --example
+//! run_scene -- [SCENE.toml] [KEY=VALUE]...`.
+use cushion_model::{simulate, RunOptions, Scene};
+
+fn main() {
+    let mut scene = Scene::default();
+    for arg in std::env::args().skip(1) {
+        if let Some((k, v)) = arg.split_once('=') {
+            if let Err(e) = scene.set_from_str(k, v) {
+                eprintln!("{e}");
+                std::process::exit(2);
+            }
+        } else {
+            scene = match Scene::from_file(std::path::Path::new(&arg)) {
+                Ok(s) => s,
+                Err(e) => {
+                    eprintln!("{e}");
+                    std::process::exit(2);
+                }
+            };
+        }
+    }
+    let r = simulate(&scene, &RunOptions::default());
+    for e in &r.events {
+        println!("{:>10.6} {:<22} s={:.6} v_t={:.4} v_p={:.4} F_r={:.3}", e.t, e.name, e.point.s, e.point.v_t, e.point.v_p, e.point.f_r);
+    }
+    println!("{}", serde_json::to_string_pretty(&r.summary).unwrap());
+}

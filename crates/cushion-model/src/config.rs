@@ -1,0 +1,716 @@
+//! Scene files: the keys of SPEC section 7, their defaults, units and checks.
+//!
+//! A scene file is TOML. Top-level keys are `module` and `t_end`; every other key lives in a
+//! section (`[robot]`, `[tool]`, `[object]`, `[stops]`, `[hydraulic]`, `[bistable]`,
+//! `[solver]`, `[energy]`) and is addressed as `section.name` everywhere (`--set`, sweep axes,
+//! Python keyword overrides). All values are SI; no unit is ever part of a key.
+//!
+//! Extensions beyond SPEC section 7 (all optional, with defaults that reproduce the SPEC):
+//!
+//! | key | meaning | default |
+//! |---|---|---|
+//! | `object.enabled` | `false`: no object in the scene (free tool) | `true` |
+//! | `energy.ledger` | carry the energy ledger's quadrature states | `true` |
+//! | `solver.max_steps` | most steps before status `max_steps` | 1000000 |
+//! | `solver.fixed_step` | step of the fixed-step methods `rk4`, `euler`, s | 1e-5 |
+//! | `solver.stiffness` | Hairer's stiffness test: `warn`, `stop` or `off` | `"warn"` |
+//! | `solver.early_end` | stop once nothing can change any more (results extrapolated) | `true` |
+//!
+//! Parsing never validates combinations; [`Scene::validate`] does (and `simulate` calls it).
+//! Every error names the key, the value and what is allowed.
+
+use cushion_ode::{Method, StiffnessAction};
+use thiserror::Error;
+
+/// Which compliance module sits between flange and tool.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Module {
+    Hydraulic,
+    Bistable,
+    Rigid,
+}
+
+impl Module {
+    /// The name users type.
+    pub fn name(self) -> &'static str {
+        match self {
+            Module::Hydraulic => "hydraulic",
+            Module::Bistable => "bistable",
+            Module::Rigid => "rigid",
+        }
+    }
+    /// Parse a user's name.
+    pub fn from_name(s: &str) -> Option<Module> {
+        match s {
+            "hydraulic" => Some(Module::Hydraulic),
+            "bistable" => Some(Module::Bistable),
+            "rigid" => Some(Module::Rigid),
+            _ => None,
+        }
+    }
+}
+
+/// How the robot starts (`robot.start`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RobotStart {
+    /// Already moving at `robot.approach_speed` at `t = 0`.
+    Cruising,
+    /// At rest at `t = 0`, accelerating at `robot.acceleration` up to the approach speed.
+    Rest,
+}
+
+impl RobotStart {
+    pub fn name(self) -> &'static str {
+        match self {
+            RobotStart::Cruising => "cruising",
+            RobotStart::Rest => "rest",
+        }
+    }
+}
+
+/// A bad scene, key or value. Every message names the key, the value and what is allowed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ConfigError {
+    #[error("unknown key `{key}` (allowed: {allowed})")]
+    UnknownKey { key: String, allowed: String },
+    #[error("`{key}` = {value}: wrong type, expected {expected}")]
+    WrongType { key: String, value: String, expected: String },
+    #[error("`{key}` = {value}: {allowed}")]
+    InvalidValue { key: String, value: String, allowed: String },
+    #[error("{path}: {message}")]
+    File { path: String, message: String },
+}
+
+impl ConfigError {
+    /// The key the error is about, when it is about one.
+    pub fn key(&self) -> Option<&str> {
+        match self {
+            ConfigError::UnknownKey { key, .. }
+            | ConfigError::WrongType { key, .. }
+            | ConfigError::InvalidValue { key, .. } => Some(key),
+            ConfigError::File { .. } => None,
+        }
+    }
+}
+
+/// `[robot]`: the prescribed flange motion (SPEC section 1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Robot {
+    /// `robot.approach_speed`: `v_max`, flange speed before the impact, m/s (> 0).
+    pub approach_speed: f64,
+    /// `robot.brake_deceleration`: `a_brake`, deceleration once braking, m/s^2 (> 0).
+    pub brake_deceleration: f64,
+    /// `robot.dead_time`: `DT`, delay from detection to the start of braking, s (>= 0).
+    pub dead_time: f64,
+    /// `robot.start`: `"cruising"` (moving at `v_max` at t = 0) or `"rest"`.
+    pub start: RobotStart,
+    /// `robot.acceleration`: `a_acc`, acceleration from rest (start = rest only), m/s^2 (> 0).
+    pub acceleration: f64,
+}
+
+/// `[tool]`: the end-effector.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Tool {
+    /// `tool.mass`: `m_t`, kg (> 0).
+    pub mass: f64,
+    /// `tool.sensor_threshold`: `s_sensor`, stroke at which the impact sensor switches, m,
+    /// inside `(0, stops.stroke)`.
+    pub sensor_threshold: f64,
+    /// `tool.viscous_friction`: `b`, N s/m (>= 0).
+    pub viscous_friction: f64,
+    /// `tool.dry_friction`: `d`, Coulomb friction force, N (>= 0; > 0 adds stick-slip events).
+    pub dry_friction: f64,
+}
+
+/// `[object]`: the small object on the plane.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// `object.enabled`: `false` removes the object (free tool, no contact). Extension.
+    pub enabled: bool,
+    /// `object.mass`: `m_p`, kg (> 0).
+    pub mass: f64,
+    /// `object.gap`: initial distance from the tool's face to the object's face, m (> 0).
+    pub gap: f64,
+    /// `object.contact_stiffness`: `k_c`, Hunt–Crossley stiffness, N/m^1.5 (> 0).
+    pub contact_stiffness: f64,
+    /// `object.contact_damping`: `chi_c`, Hunt–Crossley damping, N s/m^2.5 (>= 0).
+    pub contact_damping: f64,
+    /// `object.plane_friction`: `mu_plane`, Coulomb coefficient with the plane (0 = off), -.
+    pub plane_friction: f64,
+}
+
+/// `[stops]`: the two end-stops of the module.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stops {
+    /// `stops.stroke`: `L`, distance between forward and back stop, m (> 0).
+    pub stroke: f64,
+    /// `stops.stiffness`: `k_e`, Hunt–Crossley stiffness of both stops, N/m^1.5 (> 0).
+    pub stiffness: f64,
+    /// `stops.damping`: `chi_e`, Hunt–Crossley damping of both stops, N s/m^2.5 (>= 0).
+    pub damping: f64,
+}
+
+/// `[hydraulic]`: the hydraulic module (SPEC section 2).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Hydraulic {
+    /// `hydraulic.piston_radius`: `R_p`, main cylinder radius, m (> 0).
+    pub piston_radius: f64,
+    /// `hydraulic.orifice_radius`: `R_o`, m (> 0, < `R_p`).
+    pub orifice_radius: f64,
+    /// `hydraulic.loss_coefficient`: `c0`, orifice loss coefficient, - (> 0).
+    pub loss_coefficient: f64,
+    /// `hydraulic.liquid_density`: `rho_L`, kg/m^3 (> 0).
+    pub liquid_density: f64,
+    /// `hydraulic.gas_pressure`: `p10`, gas pressure at `s = 0`, Pa (> 0).
+    pub gas_pressure: f64,
+    /// `hydraulic.gas_volume`: `V_g0`, gas volume at `s = 0`, m^3 (> `A_p * L`).
+    pub gas_volume: f64,
+    /// `hydraulic.gas_exponent`: `kappa`, adiabatic exponent, - (in (1, 2]).
+    pub gas_exponent: f64,
+}
+
+/// `[bistable]`: the von Mises snap-through element (SPEC section 4).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bistable {
+    /// `bistable.spring_stiffness`: `k_b`, stiffness of each of the two springs, N/m (> 0).
+    pub spring_stiffness: f64,
+    /// `bistable.half_span`: `w`, m (> 0).
+    pub half_span: f64,
+    /// `bistable.apex_rise`: `h`, m (> 0).
+    pub apex_rise: f64,
+    /// `bistable.offset`: `e`, preload offset from the first stable point, m (in [0, h)).
+    pub offset: f64,
+}
+
+/// `[solver]`: integrator settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Solver {
+    /// `solver.method`: `"dp5"` (adaptive), `"rk4"` or `"euler"` (fixed step).
+    pub method: Method,
+    /// `solver.rtol`: relative tolerance, - (> 0).
+    pub rtol: f64,
+    /// `solver.atol`: absolute tolerance, in each state's unit (> 0).
+    pub atol: f64,
+    /// `solver.max_steps`: most steps before giving up (>= 1). Extension.
+    pub max_steps: u64,
+    /// `solver.fixed_step`: step of `rk4` and `euler`, s (> 0). Extension.
+    pub fixed_step: f64,
+    /// `solver.stiffness`: `"warn"`, `"stop"` or `"off"`. Extension.
+    pub stiffness: StiffnessAction,
+    /// `solver.early_end`: end the run once nothing can change any more. Extension.
+    pub early_end: bool,
+}
+
+/// `[energy]`: the energy ledger.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Energy {
+    /// `energy.ledger`: integrate robot work and dissipations (extra states). Extension.
+    pub ledger: bool,
+}
+
+/// A scene: every key of SPEC section 7 with its default.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// `module`: `"hydraulic"`, `"bistable"` or `"rigid"`.
+    pub module: Module,
+    /// `t_end`: end of simulated time, s (> 0).
+    pub t_end: f64,
+    pub robot: Robot,
+    pub tool: Tool,
+    pub object: Object,
+    pub stops: Stops,
+    pub hydraulic: Hydraulic,
+    pub bistable: Bistable,
+    pub solver: Solver,
+    pub energy: Energy,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene {
+            module: Module::Hydraulic,
+            t_end: 0.3,
+            robot: Robot {
+                approach_speed: 1.0,
+                brake_deceleration: 10.0,
+                dead_time: 0.070,
+                start: RobotStart::Cruising,
+                acceleration: 10.0,
+            },
+            tool: Tool {
+                mass: 0.048,
+                sensor_threshold: 1.5e-3,
+                viscous_friction: 0.5,
+                dry_friction: 0.0,
+            },
+            object: Object {
+                enabled: true,
+                mass: 0.246,
+                gap: 1e-3,
+                contact_stiffness: 0.6e6,
+                contact_damping: 1.35e6,
+                plane_friction: 0.0,
+            },
+            stops: Stops { stroke: 0.023, stiffness: 0.6e6, damping: 1.35e6 },
+            hydraulic: Hydraulic {
+                piston_radius: 0.020,
+                orifice_radius: 0.008,
+                loss_coefficient: 3.0,
+                liquid_density: 900.0,
+                gas_pressure: 1000.0,
+                gas_volume: 7.63e-5,
+                gas_exponent: 1.4,
+            },
+            bistable: Bistable {
+                spring_stiffness: 7022.0,
+                half_span: 0.030,
+                apex_rise: 0.0125,
+                offset: 0.001,
+            },
+            solver: Solver {
+                method: Method::Dp5,
+                rtol: 1e-6,
+                atol: 1e-9,
+                max_steps: 1_000_000,
+                fixed_step: 1e-5,
+                stiffness: StiffnessAction::Warn,
+                early_end: true,
+            },
+            energy: Energy { ledger: true },
+        }
+    }
+}
+
+/// A value type a key can hold: conversion from and to TOML, and its name in messages.
+trait KeyValue: Sized {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError>;
+    fn to_value(&self) -> toml::Value;
+}
+
+fn show(v: &toml::Value) -> String {
+    match v {
+        toml::Value::String(s) => format!("{s:?}"),
+        toml::Value::Float(f) => format_float(*f),
+        other => other.to_string(),
+    }
+}
+
+fn format_float(f: f64) -> String {
+    if f.is_nan() {
+        "nan".into()
+    } else if f.is_infinite() {
+        if f > 0.0 { "inf".into() } else { "-inf".into() }
+    } else {
+        format!("{f}")
+    }
+}
+
+fn wrong_type(key: &str, v: &toml::Value, expected: &str) -> ConfigError {
+    ConfigError::WrongType { key: key.into(), value: show(v), expected: expected.into() }
+}
+
+impl KeyValue for f64 {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        match v {
+            toml::Value::Float(f) => Ok(*f),
+            toml::Value::Integer(i) => Ok(*i as f64),
+            _ => Err(wrong_type(key, v, "a number")),
+        }
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::Float(*self)
+    }
+}
+
+impl KeyValue for bool {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        match v {
+            toml::Value::Boolean(b) => Ok(*b),
+            _ => Err(wrong_type(key, v, "true or false")),
+        }
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::Boolean(*self)
+    }
+}
+
+impl KeyValue for u64 {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        match v {
+            toml::Value::Integer(i) if *i >= 0 => Ok(*i as u64),
+            toml::Value::Integer(_) => Err(ConfigError::InvalidValue {
+                key: key.into(),
+                value: show(v),
+                allowed: "must be a non-negative integer".into(),
+            }),
+            toml::Value::Float(f) if f.fract() == 0.0 && *f >= 0.0 && *f < 9.0e18 => Ok(*f as u64),
+            _ => Err(wrong_type(key, v, "a non-negative integer")),
+        }
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::Integer((*self).min(i64::MAX as u64) as i64)
+    }
+}
+
+fn choice<T>(key: &str, v: &toml::Value, names: &[&str], parse: impl Fn(&str) -> Option<T>) -> Result<T, ConfigError> {
+    let expected = format!("one of {}", names.iter().map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(", "));
+    match v {
+        toml::Value::String(s) => parse(s).ok_or_else(|| ConfigError::InvalidValue {
+            key: key.into(),
+            value: show(v),
+            allowed: format!("must be {expected}"),
+        }),
+        _ => Err(wrong_type(key, v, &format!("a string, {expected}"))),
+    }
+}
+
+impl KeyValue for Module {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        choice(key, v, &["hydraulic", "bistable", "rigid"], Module::from_name)
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::String(self.name().into())
+    }
+}
+
+impl KeyValue for RobotStart {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        choice(key, v, &["cruising", "rest"], |s| match s {
+            "cruising" => Some(RobotStart::Cruising),
+            "rest" => Some(RobotStart::Rest),
+            _ => None,
+        })
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::String(self.name().into())
+    }
+}
+
+impl KeyValue for Method {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        choice(key, v, &["dp5", "rk4", "euler"], Method::from_name)
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::String(self.name().into())
+    }
+}
+
+/// The name of a stiffness setting (`warn`, `stop`, `off`).
+pub fn stiffness_name(a: StiffnessAction) -> &'static str {
+    match a {
+        StiffnessAction::Off => "off",
+        StiffnessAction::Warn => "warn",
+        StiffnessAction::Stop => "stop",
+    }
+}
+
+impl KeyValue for StiffnessAction {
+    fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
+        choice(key, v, &["warn", "stop", "off"], |s| match s {
+            "warn" => Some(StiffnessAction::Warn),
+            "stop" => Some(StiffnessAction::Stop),
+            "off" => Some(StiffnessAction::Off),
+            _ => None,
+        })
+    }
+    fn to_value(&self) -> toml::Value {
+        toml::Value::String(stiffness_name(*self).into())
+    }
+}
+
+macro_rules! scene_keys {
+    ($( $key:literal => $($field:ident).+ ; )*) => {
+        const KEY_LIST: &[&str] = &[$($key),*];
+
+        impl Scene {
+            fn set_field(&mut self, key: &str, v: &toml::Value) -> Result<(), ConfigError> {
+                match key {
+                    $( $key => { self.$($field).+ = KeyValue::from_value(key, v)?; Ok(()) } )*
+                    _ => Err(unknown_key(key)),
+                }
+            }
+            fn get_field(&self, key: &str) -> Option<toml::Value> {
+                match key {
+                    $( $key => Some(KeyValue::to_value(&self.$($field).+)), )*
+                    _ => None,
+                }
+            }
+        }
+    };
+}
+
+scene_keys! {
+    "module" => module;
+    "t_end" => t_end;
+    "robot.approach_speed" => robot.approach_speed;
+    "robot.brake_deceleration" => robot.brake_deceleration;
+    "robot.dead_time" => robot.dead_time;
+    "robot.start" => robot.start;
+    "robot.acceleration" => robot.acceleration;
+    "tool.mass" => tool.mass;
+    "tool.sensor_threshold" => tool.sensor_threshold;
+    "tool.viscous_friction" => tool.viscous_friction;
+    "tool.dry_friction" => tool.dry_friction;
+    "object.enabled" => object.enabled;
+    "object.mass" => object.mass;
+    "object.gap" => object.gap;
+    "object.contact_stiffness" => object.contact_stiffness;
+    "object.contact_damping" => object.contact_damping;
+    "object.plane_friction" => object.plane_friction;
+    "stops.stroke" => stops.stroke;
+    "stops.stiffness" => stops.stiffness;
+    "stops.damping" => stops.damping;
+    "hydraulic.piston_radius" => hydraulic.piston_radius;
+    "hydraulic.orifice_radius" => hydraulic.orifice_radius;
+    "hydraulic.loss_coefficient" => hydraulic.loss_coefficient;
+    "hydraulic.liquid_density" => hydraulic.liquid_density;
+    "hydraulic.gas_pressure" => hydraulic.gas_pressure;
+    "hydraulic.gas_volume" => hydraulic.gas_volume;
+    "hydraulic.gas_exponent" => hydraulic.gas_exponent;
+    "bistable.spring_stiffness" => bistable.spring_stiffness;
+    "bistable.half_span" => bistable.half_span;
+    "bistable.apex_rise" => bistable.apex_rise;
+    "bistable.offset" => bistable.offset;
+    "solver.method" => solver.method;
+    "solver.rtol" => solver.rtol;
+    "solver.atol" => solver.atol;
+    "solver.max_steps" => solver.max_steps;
+    "solver.fixed_step" => solver.fixed_step;
+    "solver.stiffness" => solver.stiffness;
+    "solver.early_end" => solver.early_end;
+    "energy.ledger" => energy.ledger;
+}
+
+const SECTIONS: &[&str] = &["robot", "tool", "object", "stops", "hydraulic", "bistable", "solver", "energy"];
+
+fn unknown_key(key: &str) -> ConfigError {
+    // Name the keys of the same section when the section is known, else every key.
+    let section = key.split('.').next().unwrap_or("");
+    let same: Vec<&str> = if key.contains('.') && SECTIONS.contains(&section) {
+        KEY_LIST.iter().copied().filter(|k| k.starts_with(&format!("{section}."))).collect()
+    } else {
+        KEY_LIST.to_vec()
+    };
+    ConfigError::UnknownKey { key: key.into(), allowed: same.join(", ") }
+}
+
+fn invalid(key: &str, value: f64, allowed: impl Into<String>) -> ConfigError {
+    ConfigError::InvalidValue { key: key.into(), value: format_float(value), allowed: allowed.into() }
+}
+
+/// Parse `text` as one TOML value (`1e-3`, `true`, `"x"`, `[1, 2]`); a bare word that is not
+/// TOML (`bistable`) is taken as a string.
+pub fn parse_value(text: &str) -> toml::Value {
+    let t = text.trim();
+    if let Ok(table) = format!("v = {t}").parse::<toml::Table>() {
+        if table.len() == 1 {
+            if let Some(v) = table.get("v") {
+                return v.clone();
+            }
+        }
+    }
+    toml::Value::String(t.to_string())
+}
+
+impl Scene {
+    /// Parse a scene from TOML text (unknown keys and wrong types are errors); not validated.
+    /// Keys missing from the text keep their defaults.
+    pub fn from_toml_str(text: &str) -> Result<Scene, ConfigError> {
+        let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            let mut message = format!("TOML syntax error: {}", e.message());
+            if let Some(span) = e.span() {
+                let upto = &text[..span.start.min(text.len())];
+                let line = upto.matches('\n').count() + 1;
+                let col = upto.len() - upto.rfind('\n').map(|i| i + 1).unwrap_or(0) + 1;
+                message = format!("line {line}, column {col}: {message}");
+            }
+            ConfigError::File { path: "<scene>".into(), message }
+        })?;
+        let mut scene = Scene::default();
+        scene.apply_table(&table)?;
+        Ok(scene)
+    }
+
+    /// Apply every key of a TOML table (sections as sub-tables, or dotted keys).
+    pub fn apply_table(&mut self, table: &toml::Table) -> Result<(), ConfigError> {
+        for (k, v) in table {
+            match v {
+                toml::Value::Table(sub) if SECTIONS.contains(&k.as_str()) => {
+                    for (name, value) in sub {
+                        let key = format!("{k}.{name}");
+                        if let toml::Value::Table(_) = value {
+                            return Err(unknown_key(&key));
+                        }
+                        self.set(&key, value)?;
+                    }
+                }
+                toml::Value::Table(_) => return Err(unknown_key(k)),
+                _ => self.set(k, v)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// Read and parse a scene file; errors name the path.
+    pub fn from_file(path: &std::path::Path) -> Result<Scene, ConfigError> {
+        let p = path.display().to_string();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| ConfigError::File { path: p.clone(), message: format!("cannot read scene file: {e}") })?;
+        match Scene::from_toml_str(&text) {
+            Err(ConfigError::File { message, .. }) => Err(ConfigError::File { path: p, message }),
+            other => other,
+        }
+    }
+
+    /// Set one key (`section.name`) to a TOML value (a float key also takes an integer).
+    pub fn set(&mut self, key: &str, value: &toml::Value) -> Result<(), ConfigError> {
+        self.set_field(key, value)
+    }
+
+    /// Set one key from the text of `--set KEY=VALUE` (parsed as a TOML value; a bare word is a
+    /// string, so `module=bistable` works).
+    pub fn set_from_str(&mut self, key: &str, text: &str) -> Result<(), ConfigError> {
+        if !KEY_LIST.contains(&key) {
+            return Err(unknown_key(key));
+        }
+        self.set(key, &parse_value(text))
+    }
+
+    /// The value of one key.
+    pub fn get(&self, key: &str) -> Result<toml::Value, ConfigError> {
+        self.get_field(key).ok_or_else(|| unknown_key(key))
+    }
+
+    /// Every key a user may type, in SPEC order (extensions beside their section).
+    pub fn keys() -> &'static [&'static str] {
+        KEY_LIST
+    }
+
+    /// Check every value and every combination (SPEC and issue 3: positive masses, orifice
+    /// smaller than piston, gas volume positive over the stroke, sensor inside the stroke,
+    /// finite numbers, ...). Every section is checked whatever the module, so a scene stays
+    /// valid when a sweep switches `module`.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        // 1. every number finite
+        for key in KEY_LIST {
+            if let Some(toml::Value::Float(f)) = self.get_field(key) {
+                if !f.is_finite() {
+                    return Err(invalid(key, f, "must be a finite number"));
+                }
+            }
+        }
+        let pos = |key: &str, v: f64| if v > 0.0 { Ok(()) } else { Err(invalid(key, v, "must be > 0")) };
+        let nonneg = |key: &str, v: f64| if v >= 0.0 { Ok(()) } else { Err(invalid(key, v, "must be >= 0")) };
+        pos("t_end", self.t_end)?;
+        pos("robot.approach_speed", self.robot.approach_speed)?;
+        pos("robot.brake_deceleration", self.robot.brake_deceleration)?;
+        nonneg("robot.dead_time", self.robot.dead_time)?;
+        pos("robot.acceleration", self.robot.acceleration)?;
+        pos("tool.mass", self.tool.mass)?;
+        nonneg("tool.viscous_friction", self.tool.viscous_friction)?;
+        nonneg("tool.dry_friction", self.tool.dry_friction)?;
+        pos("object.mass", self.object.mass)?;
+        pos("object.gap", self.object.gap)?;
+        pos("object.contact_stiffness", self.object.contact_stiffness)?;
+        nonneg("object.contact_damping", self.object.contact_damping)?;
+        nonneg("object.plane_friction", self.object.plane_friction)?;
+        pos("stops.stroke", self.stops.stroke)?;
+        pos("stops.stiffness", self.stops.stiffness)?;
+        nonneg("stops.damping", self.stops.damping)?;
+        let l = self.stops.stroke;
+        let ss = self.tool.sensor_threshold;
+        if !(ss > 0.0 && ss < l) {
+            return Err(invalid(
+                "tool.sensor_threshold",
+                ss,
+                format!("must lie inside the stroke, 0 < s_sensor < stops.stroke = {}", format_float(l)),
+            ));
+        }
+        let h = &self.hydraulic;
+        pos("hydraulic.piston_radius", h.piston_radius)?;
+        pos("hydraulic.orifice_radius", h.orifice_radius)?;
+        if h.orifice_radius >= h.piston_radius {
+            return Err(invalid(
+                "hydraulic.orifice_radius",
+                h.orifice_radius,
+                format!(
+                    "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
+                    format_float(h.piston_radius)
+                ),
+            ));
+        }
+        pos("hydraulic.loss_coefficient", h.loss_coefficient)?;
+        pos("hydraulic.liquid_density", h.liquid_density)?;
+        pos("hydraulic.gas_pressure", h.gas_pressure)?;
+        pos("hydraulic.gas_volume", h.gas_volume)?;
+        let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
+        if h.gas_volume - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.gas_volume",
+                h.gas_volume,
+                format!(
+                    "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                    format_float(a_p * l)
+                ),
+            ));
+        }
+        let k = h.gas_exponent;
+        if !(k > 1.0 && k <= 2.0) {
+            return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+        }
+        let b = &self.bistable;
+        pos("bistable.spring_stiffness", b.spring_stiffness)?;
+        pos("bistable.half_span", b.half_span)?;
+        pos("bistable.apex_rise", b.apex_rise)?;
+        if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
+            return Err(invalid(
+                "bistable.offset",
+                b.offset,
+                format!("must lie in [0, bistable.apex_rise = {})", format_float(b.apex_rise)),
+            ));
+        }
+        let s = &self.solver;
+        pos("solver.rtol", s.rtol)?;
+        pos("solver.atol", s.atol)?;
+        if s.max_steps < 1 {
+            return Err(ConfigError::InvalidValue {
+                key: "solver.max_steps".into(),
+                value: s.max_steps.to_string(),
+                allowed: "must be >= 1".into(),
+            });
+        }
+        pos("solver.fixed_step", s.fixed_step)?;
+        Ok(())
+    }
+
+    /// The scene as a TOML table (every key, for provenance): `module` and `t_end` at the top,
+    /// one sub-table per section.
+    pub fn to_toml(&self) -> toml::Table {
+        let mut top = toml::Table::new();
+        for key in KEY_LIST {
+            let v = self.get_field(key).expect("every listed key has a field");
+            match key.split_once('.') {
+                None => {
+                    top.insert((*key).into(), v);
+                }
+                Some((sec, name)) => {
+                    let entry = top.entry(sec.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                    if let toml::Value::Table(t) = entry {
+                        t.insert(name.into(), v);
+                    }
+                }
+            }
+        }
+        top
+    }
+
+    /// Piston area `A_p = pi R_p^2`, m^2.
+    pub fn piston_area(&self) -> f64 {
+        std::f64::consts::PI * self.hydraulic.piston_radius.powi(2)
+    }
+    /// Orifice area `A_o = pi R_o^2`, m^2.
+    pub fn orifice_area(&self) -> f64 {
+        std::f64::consts::PI * self.hydraulic.orifice_radius.powi(2)
+    }
+}

@@ -1,0 +1,819 @@
+//! A scene assembled into an ODE system holding only the parts it names.
+//!
+//! State layout (SPEC section 6, computed at run time; [`Layout`]):
+//! - tool `x_t, v_t` (hydraulic and bistable only: the rigid tool is the flange),
+//! - object `x_p, v_p` (when `object.enabled`),
+//! - energy ledger quadratures (when `energy.ledger`): robot work, orifice dissipation
+//!   (hydraulic), tool friction dissipation (hydraulic, bistable), contact damping dissipation
+//!   (whenever a contact exists), plane friction dissipation (`object.plane_friction > 0`),
+//! - `int F_c dt` (only with plane friction: the robot impulse then needs it; otherwise the
+//!   impulse follows exactly from momentum, `int F_r dt = -(m_t dv_t + m_p dv_p)`).
+//!
+//! The robot is prescribed (not a state). Discrete regimes (contact on/off per contact, tool
+//! stuck or slipping, object stuck or sliding, sensor switched, robot phase) change only in
+//! event and time-stop handlers; the right-hand side is smooth within a regime.
+//!
+//! Events (only those the scene needs are assembled): sensor `s - s_sensor` (rising, once),
+//! tool-object penetration `x_t - x_p`, forward stop penetration `-s`, back stop penetration
+//! `s - L`, tool stick/slip (`sd` while slipping, `d - |F_static|` while stuck; only with
+//! `tool.dry_friction > 0`), object stick/slip (`v_p` while sliding, `mu m_p g - F_c` while
+//! stuck; only with plane friction), and the stroke's local maxima (`sd` falling, record only,
+//! so that `max_stroke` is exact). Robot kinks are time stops.
+
+use crate::config::{Module, RobotStart, Scene};
+use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
+use crate::trajectory::{EventLogEntry, TrajectoryPoint};
+use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
+
+/// Where each part of the state lives (`None`: absent).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Layout {
+    /// Number of states.
+    pub n: usize,
+    pub tool: Option<usize>,
+    pub object: Option<usize>,
+    pub work: Option<usize>,
+    pub d_orifice: Option<usize>,
+    pub d_friction: Option<usize>,
+    pub d_contact: Option<usize>,
+    pub d_plane: Option<usize>,
+    pub contact_impulse: Option<usize>,
+}
+
+impl Layout {
+    pub fn of(scene: &Scene) -> Layout {
+        let mut l = Layout::default();
+        let mut n = 0;
+        let mut take = |k: usize| {
+            let i = n;
+            n += k;
+            Some(i)
+        };
+        let rigid = scene.module == Module::Rigid;
+        let obj = scene.object.enabled;
+        let plane = obj && scene.object.plane_friction > 0.0;
+        if !rigid {
+            l.tool = take(2);
+        }
+        if obj {
+            l.object = take(2);
+        }
+        if scene.energy.ledger {
+            l.work = take(1);
+            if scene.module == Module::Hydraulic {
+                l.d_orifice = take(1);
+            }
+            if !rigid {
+                l.d_friction = take(1);
+            }
+            if !rigid || obj {
+                l.d_contact = take(1);
+            }
+            if plane {
+                l.d_plane = take(1);
+            }
+        }
+        if plane {
+            l.contact_impulse = take(1);
+        }
+        l.n = n;
+        l
+    }
+}
+
+/// The numbers of a scene the right-hand side needs, SI.
+#[derive(Clone, Debug)]
+pub(crate) struct Params {
+    pub module: Module,
+    pub has_object: bool,
+    pub m_t: f64,
+    pub m_p: f64,
+    pub s_sensor: f64,
+    pub b: f64,
+    pub d: f64,
+    pub k_c: f64,
+    pub chi_c: f64,
+    pub mu_n: f64,
+    pub stroke: f64,
+    pub k_e: f64,
+    pub chi_e: f64,
+    pub a_p: f64,
+    pub a_o: f64,
+    pub c0: f64,
+    pub rho: f64,
+    pub p10: f64,
+    pub v_g0: f64,
+    pub kappa: f64,
+    pub k_b: f64,
+    pub w: f64,
+    pub h: f64,
+    pub e: f64,
+    pub dead_time: f64,
+}
+
+/// The discrete state of the run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Regime {
+    pub detected: bool,
+    pub obj_contact: bool,
+    pub fwd: bool,
+    pub back: bool,
+    pub tool_stuck: bool,
+    /// Sign of `sd` while slipping (with dry friction).
+    pub tool_dir: f64,
+    pub obj_stuck: bool,
+}
+
+/// Everything at one instant: kinematics (m, m/s, m/s^2), pressures (Pa), forces (N, + along
+/// +x unless said otherwise), and the ledger's power terms (W).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Eval {
+    pub x_r: f64,
+    pub v_r: f64,
+    pub a_r: f64,
+    pub x_t: f64,
+    pub v_t: f64,
+    pub a_t: f64,
+    pub x_p: f64,
+    pub v_p: f64,
+    pub a_p: f64,
+    pub s: f64,
+    pub sd: f64,
+    /// Gas pressure (NaN without gas) and orifice pressure drop.
+    pub p1: f64,
+    pub dp: f64,
+    /// Module force on the tool (`p_m A_p` or `F_b`).
+    pub f_module: f64,
+    /// Friction on the tool (static while stuck).
+    pub f_f: f64,
+    /// Magnitudes of the stop forces (forward stop pushes the tool back, back stop forward).
+    pub f_fwd: f64,
+    pub f_back: f64,
+    /// Tool-object contact force (>= 0).
+    pub f_c: f64,
+    /// Total module force on the tool `G`; the force on the robot is `-G`.
+    pub g: f64,
+    pub f_r: f64,
+    /// Plane friction on the object.
+    pub f_plane: f64,
+    pub p_work: f64,
+    pub p_orifice: f64,
+    pub p_friction: f64,
+    pub p_contact: f64,
+    pub p_plane: f64,
+}
+
+const EV_SENSOR: u8 = 0;
+const EV_OBJECT: u8 = 1;
+const EV_FWD: u8 = 2;
+const EV_BACK: u8 = 3;
+const EV_TOOL_STICK: u8 = 4;
+const EV_OBJ_STICK: u8 = 5;
+const EV_STROKE_MAX: u8 = 6;
+
+/// Peaks and counts gathered along the run.
+#[derive(Clone, Debug)]
+pub(crate) struct Metrics {
+    pub t_detect: Option<f64>,
+    pub peak_fr: f64,
+    pub t_peak_fr: f64,
+    pub peak_fc: f64,
+    pub max_stroke: f64,
+    pub object_impacts: u32,
+    pub fwd_impacts: u32,
+    pub back_impacts: u32,
+    pub back_hit: bool,
+}
+
+/// The ODE system of one scene.
+pub struct Model {
+    pub(crate) p: Params,
+    pub layout: Layout,
+    pub(crate) regime: Regime,
+    /// The regime in force during the step being reported to `on_step`.
+    step_regime: Regime,
+    pub(crate) robot: RobotProfile,
+    pending_brake: Option<f64>,
+    events: [u8; 8],
+    n_events: usize,
+    pub(crate) metrics: Metrics,
+    pub(crate) log: Vec<EventLogEntry>,
+    /// Recorded trajectory points (when asked).
+    pub(crate) record: Option<Vec<TrajectoryPoint>>,
+    sample_interval: Option<f64>,
+    next_sample: f64,
+    pub(crate) early_end: Option<f64>,
+    early_end_enabled: bool,
+    t_end: f64,
+    settle_v: f64,
+    settle_a: f64,
+    pub(crate) y0: Vec<f64>,
+}
+
+impl Model {
+    /// Assemble a (validated) scene; the initial state is the static preload equilibrium.
+    pub fn new(scene: &Scene) -> Model {
+        let layout = Layout::of(scene);
+        let h = &scene.hydraulic;
+        let bi = &scene.bistable;
+        let p = Params {
+            module: scene.module,
+            has_object: scene.object.enabled,
+            m_t: scene.tool.mass,
+            m_p: scene.object.mass,
+            s_sensor: scene.tool.sensor_threshold,
+            b: scene.tool.viscous_friction,
+            d: scene.tool.dry_friction,
+            k_c: scene.object.contact_stiffness,
+            chi_c: scene.object.contact_damping,
+            mu_n: scene.object.plane_friction * scene.object.mass * GRAVITY,
+            stroke: scene.stops.stroke,
+            k_e: scene.stops.stiffness,
+            chi_e: scene.stops.damping,
+            a_p: scene.piston_area(),
+            a_o: scene.orifice_area(),
+            c0: h.loss_coefficient,
+            rho: h.liquid_density,
+            p10: h.gas_pressure,
+            v_g0: h.gas_volume,
+            kappa: h.gas_exponent,
+            k_b: bi.spring_stiffness,
+            w: bi.half_span,
+            h: bi.apex_rise,
+            e: bi.offset,
+            dead_time: scene.robot.dead_time,
+        };
+        let from_rest = match scene.robot.start {
+            RobotStart::Cruising => None,
+            RobotStart::Rest => Some(scene.robot.acceleration),
+        };
+        let robot = RobotProfile::new(scene.robot.approach_speed, scene.robot.brake_deceleration, from_rest);
+        let v0 = if from_rest.is_some() { 0.0 } else { scene.robot.approach_speed };
+
+        // Static preload equilibrium on the forward stop.
+        let s0 = match p.module {
+            Module::Hydraulic => {
+                let (p10, vg0, a_p, kappa) = (p.p10, p.v_g0, p.a_p, p.kappa);
+                physics::preload_equilibrium(p.k_e, |s| physics::gas_pressure(p10, vg0, a_p, kappa, s) * a_p)
+            }
+            Module::Bistable => {
+                let (k_b, w, hh, e) = (p.k_b, p.w, p.h, p.e);
+                physics::preload_equilibrium(p.k_e, |s| physics::bistable_force(k_b, w, hh, s + e))
+            }
+            Module::Rigid => 0.0,
+        };
+        let mut y0 = vec![0.0; layout.n.max(1)];
+        let x_t0 = -s0;
+        if let Some(i) = layout.tool {
+            y0[i] = x_t0;
+            y0[i + 1] = v0;
+        }
+        if let Some(j) = layout.object {
+            y0[j] = x_t0 + scene.object.gap;
+            y0[j + 1] = 0.0;
+        }
+        let regime = Regime {
+            detected: false,
+            obj_contact: false,
+            fwd: s0 < 0.0,
+            back: false,
+            tool_stuck: false,
+            tool_dir: 0.0,
+            obj_stuck: p.mu_n > 0.0,
+        };
+        let mut events = [0u8; 8];
+        let mut n_events = 0;
+        let mut add = |e: u8| {
+            events[n_events] = e;
+            n_events += 1;
+        };
+        if p.module != Module::Rigid {
+            add(EV_SENSOR);
+        }
+        if p.has_object {
+            add(EV_OBJECT);
+        }
+        if p.module != Module::Rigid {
+            add(EV_FWD);
+            add(EV_BACK);
+            if p.d > 0.0 {
+                add(EV_TOOL_STICK);
+            }
+            add(EV_STROKE_MAX);
+        }
+        if p.has_object && p.mu_n > 0.0 {
+            add(EV_OBJ_STICK);
+        }
+        let rtol = scene.solver.rtol;
+        let atol = scene.solver.atol;
+        let _ = rtol;
+        let mut m = Model {
+            p,
+            layout,
+            regime,
+            step_regime: regime,
+            robot,
+            pending_brake: None,
+            events,
+            n_events,
+            metrics: Metrics {
+                t_detect: None,
+                peak_fr: 0.0,
+                t_peak_fr: 0.0,
+                peak_fc: 0.0,
+                max_stroke: s0,
+                object_impacts: 0,
+                fwd_impacts: 0,
+                back_impacts: 0,
+                back_hit: false,
+            },
+            log: Vec::new(),
+            record: None,
+            sample_interval: None,
+            next_sample: 0.0,
+            early_end: None,
+            early_end_enabled: scene.solver.early_end,
+            t_end: scene.t_end,
+            settle_v: 100.0 * atol,
+            settle_a: 1000.0 * atol,
+            y0: Vec::new(),
+        };
+        // Dry friction: the tool starts stuck if friction can hold it.
+        if m.p.d > 0.0 && m.p.module != Module::Rigid {
+            m.regime.tool_stuck = true;
+            let e = m.eval(0.0, &y0, m.robot.current(), &m.regime);
+            if e.f_f.abs() > m.p.d {
+                m.regime.tool_stuck = false;
+                m.regime.tool_dir = e.f_f.signum();
+            }
+        }
+        m.step_regime = m.regime;
+        let e0 = m.eval(0.0, &y0, m.robot.current(), &m.regime);
+        m.metrics.peak_fr = e0.f_r;
+        m.metrics.peak_fc = e0.f_c;
+        m.y0 = y0;
+        m
+    }
+
+    /// Record the trajectory from now on (every step end, every event, and uniform samples).
+    pub(crate) fn start_recording(&mut self, sample_interval: Option<f64>) {
+        let p = self.point_at(0.0, &self.y0.clone());
+        self.record = Some(vec![p]);
+        self.sample_interval = sample_interval.filter(|dt| *dt > 0.0 && dt.is_finite());
+        if let Some(dt) = self.sample_interval {
+            self.next_sample = dt;
+        }
+    }
+
+    /// Everything at `(t, y)` with robot segment `seg` and regime `r`.
+    pub(crate) fn eval(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
+        let p = &self.p;
+        let (x_r, v_r, a_r) = seg.at(t);
+        let mut e = Eval { x_r, v_r, a_r, p1: f64::NAN, x_p: f64::NAN, v_p: f64::NAN, a_p: f64::NAN, ..Eval::default() };
+        let rigid = p.module == Module::Rigid;
+        let mut f_stop = 0.0;
+        if let Some(i) = self.layout.tool {
+            e.x_t = y[i];
+            e.v_t = y[i + 1];
+            e.s = x_r - e.x_t;
+            e.sd = v_r - e.v_t;
+            if r.fwd {
+                let d = -e.s;
+                e.f_fwd = physics::hunt_crossley(p.k_e, p.chi_e, d, -e.sd);
+                e.p_contact += (e.f_fwd - p.k_e * pos15(d)) * (-e.sd);
+            }
+            if r.back {
+                let d = e.s - p.stroke;
+                e.f_back = physics::hunt_crossley(p.k_e, p.chi_e, d, e.sd);
+                e.p_contact += (e.f_back - p.k_e * pos15(d)) * e.sd;
+            }
+            f_stop = e.f_back - e.f_fwd;
+            match p.module {
+                Module::Hydraulic => {
+                    e.p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, e.s);
+                    e.dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, e.sd);
+                    e.f_module = (e.p1 + e.dp) * p.a_p;
+                    e.p_orifice = e.dp * p.a_p * e.sd;
+                }
+                Module::Bistable => {
+                    e.f_module = physics::bistable_force(p.k_b, p.w, p.h, e.s + p.e);
+                }
+                Module::Rigid => {}
+            }
+        } else {
+            // Rigid: the tool is the flange.
+            e.x_t = x_r;
+            e.v_t = v_r;
+        }
+        if let Some(j) = self.layout.object {
+            e.x_p = y[j];
+            e.v_p = y[j + 1];
+            if r.obj_contact {
+                let d = e.x_t - e.x_p;
+                let dd = e.v_t - e.v_p;
+                e.f_c = physics::hunt_crossley(p.k_c, p.chi_c, d, dd);
+                e.p_contact += (e.f_c - p.k_c * pos15(d)) * dd;
+            }
+        }
+        if rigid {
+            e.a_t = a_r;
+            e.g = p.m_t * a_r + e.f_c;
+        } else if r.tool_stuck {
+            e.a_t = a_r;
+            e.g = p.m_t * a_r + e.f_c;
+            e.f_f = e.g - e.f_module - f_stop;
+            e.p_friction = e.f_f * e.sd;
+        } else {
+            e.f_f = physics::tool_friction(p.d, p.b, e.sd, r.tool_dir);
+            e.g = e.f_module + e.f_f + f_stop;
+            e.a_t = (e.g - e.f_c) / p.m_t;
+            e.p_friction = e.f_f * e.sd;
+        }
+        e.f_r = -e.g;
+        e.p_work = e.g * v_r;
+        if self.layout.object.is_some() {
+            if p.mu_n > 0.0 {
+                if r.obj_stuck {
+                    e.a_p = 0.0;
+                    e.f_plane = -e.f_c;
+                } else {
+                    e.f_plane = -p.mu_n;
+                    e.a_p = (e.f_c + e.f_plane) / p.m_p;
+                    e.p_plane = p.mu_n * e.v_p;
+                }
+            } else {
+                e.a_p = e.f_c / p.m_p;
+            }
+        }
+        e
+    }
+
+    /// The trajectory point at `t` (robot segment looked up by time, current regime).
+    pub(crate) fn point_at(&self, t: f64, y: &[f64]) -> TrajectoryPoint {
+        let seg = *self.robot.segment_at(t);
+        let e = self.eval(t, y, &seg, &self.regime);
+        to_point(t, &e)
+    }
+
+    fn log_event(&mut self, name: &str, t: f64, y: &[f64]) {
+        let seg = *self.robot.current();
+        let e = self.eval(t, y, &seg, &self.regime);
+        let point = to_point(t, &e);
+        if let Some(rec) = self.record.as_mut() {
+            rec.push(point);
+        }
+        self.log.push(EventLogEntry { t, name: name.to_string(), point });
+    }
+
+    fn brake_now(&mut self, t: f64, y: &[f64], ctl: &mut Control) {
+        let t_stop = self.robot.brake(t);
+        ctl.add_time_stop(t_stop);
+        self.log_event("brake", t, y);
+    }
+
+    fn event_value(&self, kind: u8, t: f64, y: &[f64]) -> f64 {
+        let r = &self.regime;
+        let seg = self.robot.current();
+        let (x_r, v_r, _) = seg.at(t);
+        let tool = |y: &[f64]| match self.layout.tool {
+            Some(i) => (y[i], y[i + 1]),
+            None => (x_r, v_r),
+        };
+        match kind {
+            EV_SENSOR => {
+                if r.detected {
+                    1.0
+                } else {
+                    x_r - tool(y).0 - self.p.s_sensor
+                }
+            }
+            EV_OBJECT => {
+                let j = self.layout.object.unwrap_or(0);
+                tool(y).0 - y[j]
+            }
+            EV_FWD => tool(y).0 - x_r,
+            EV_BACK => x_r - tool(y).0 - self.p.stroke,
+            EV_TOOL_STICK => {
+                if r.tool_stuck {
+                    let e = self.eval(t, y, seg, r);
+                    self.p.d - e.f_f.abs()
+                } else {
+                    v_r - tool(y).1
+                }
+            }
+            EV_OBJ_STICK => {
+                if r.obj_stuck {
+                    let e = self.eval(t, y, seg, r);
+                    self.p.mu_n - e.f_c
+                } else {
+                    let j = self.layout.object.unwrap_or(0);
+                    y[j + 1]
+                }
+            }
+            EV_STROKE_MAX => v_r - tool(y).1,
+            _ => 1.0,
+        }
+    }
+
+    fn handle_event(&mut self, kind: u8, t: f64, y: &mut [f64], ctl: &mut Control) -> EventAction {
+        // A contact event begins the contact when it is off and ends it when it is on: the
+        // regime, not the sign of a value that sits on zero, decides.
+        match kind {
+            EV_SENSOR => {
+                if self.regime.detected {
+                    return EventAction::Continue;
+                }
+                self.detect(t, y, ctl, "sensor");
+                EventAction::Restart
+            }
+            EV_OBJECT => {
+                if !self.regime.obj_contact {
+                    self.log_event("object_contact_begin", t, y);
+                    self.regime.obj_contact = true;
+                    self.metrics.object_impacts += 1;
+                    if self.p.module == Module::Rigid && !self.regime.detected {
+                        self.detect(t, y, ctl, "sensor");
+                    }
+                } else {
+                    self.log_event("object_contact_end", t, y);
+                    self.regime.obj_contact = false;
+                }
+                EventAction::Restart
+            }
+            EV_FWD => {
+                if !self.regime.fwd {
+                    self.log_event("forward_stop_begin", t, y);
+                    self.regime.fwd = true;
+                    self.metrics.fwd_impacts += 1;
+                } else {
+                    self.log_event("forward_stop_end", t, y);
+                    self.regime.fwd = false;
+                }
+                EventAction::Restart
+            }
+            EV_BACK => {
+                if !self.regime.back {
+                    self.log_event("back_stop_begin", t, y);
+                    self.regime.back = true;
+                    self.metrics.back_impacts += 1;
+                    self.metrics.back_hit = true;
+                } else {
+                    self.log_event("back_stop_end", t, y);
+                    self.regime.back = false;
+                }
+                EventAction::Restart
+            }
+            EV_TOOL_STICK => {
+                let i = self.layout.tool.unwrap_or(0);
+                let seg = *self.robot.current();
+                if self.regime.tool_stuck {
+                    let e = self.eval(t, y, &seg, &self.regime);
+                    self.log_event("tool_slip", t, y);
+                    self.regime.tool_stuck = false;
+                    self.regime.tool_dir = e.f_f.signum();
+                } else {
+                    // sd crossed zero: can static friction hold the tool on the robot?
+                    let (_, v_r, _) = seg.at(t);
+                    let mut trial = self.regime;
+                    trial.tool_stuck = true;
+                    let mut ys = y.to_vec();
+                    ys[i + 1] = v_r;
+                    let e = self.eval(t, &ys, &seg, &trial);
+                    if e.f_f.abs() <= self.p.d {
+                        self.log_event("tool_stick", t, y);
+                        y[i + 1] = v_r;
+                        self.regime.tool_stuck = true;
+                        self.regime.tool_dir = 0.0;
+                    } else {
+                        self.regime.tool_dir = e.f_f.signum();
+                    }
+                }
+                EventAction::Restart
+            }
+            EV_OBJ_STICK => {
+                let j = self.layout.object.unwrap_or(0);
+                if self.regime.obj_stuck {
+                    self.log_event("object_slip", t, y);
+                    self.regime.obj_stuck = false;
+                    EventAction::Restart
+                } else {
+                    let seg = *self.robot.current();
+                    let e = self.eval(t, y, &seg, &self.regime);
+                    if e.f_c <= self.p.mu_n {
+                        self.log_event("object_stick", t, y);
+                        y[j + 1] = 0.0;
+                        self.regime.obj_stuck = true;
+                        EventAction::Restart
+                    } else {
+                        EventAction::Continue
+                    }
+                }
+            }
+            EV_STROKE_MAX => {
+                if let Some(i) = self.layout.tool {
+                    let (x_r, _, _) = self.robot.current().at(t);
+                    let s = x_r - y[i];
+                    if s > self.metrics.max_stroke {
+                        self.metrics.max_stroke = s;
+                    }
+                }
+                EventAction::Continue
+            }
+            _ => EventAction::Continue,
+        }
+    }
+
+    fn detect(&mut self, t: f64, y: &[f64], ctl: &mut Control, name: &str) {
+        self.regime.detected = true;
+        self.metrics.t_detect = Some(t);
+        self.log_event(name, t, y);
+        if self.p.dead_time > 0.0 {
+            let tb = t + self.p.dead_time;
+            self.pending_brake = Some(tb);
+            ctl.add_time_stop(tb);
+        } else {
+            self.brake_now(t, y, ctl);
+        }
+    }
+
+    fn observe_step<const N: usize>(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
+        let (t0, t1) = (step.t0, step.t1);
+        let y1 = step.y1.as_slice();
+        let seg = *self.robot.segment_at(0.5 * (t0 + t1));
+        let r = self.step_regime;
+        const K: usize = 4;
+        for k in 1..=K {
+            let t = if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
+            let e = if k == K {
+                self.eval(t, y1, &seg, &r)
+            } else {
+                self.eval(t, step.at(t).as_slice(), &seg, &r)
+            };
+            if e.f_r.abs() > self.metrics.peak_fr.abs() {
+                self.metrics.peak_fr = e.f_r;
+                self.metrics.t_peak_fr = t;
+            }
+            if e.f_c > self.metrics.peak_fc {
+                self.metrics.peak_fc = e.f_c;
+            }
+            if self.layout.tool.is_some() && e.s > self.metrics.max_stroke {
+                self.metrics.max_stroke = e.s;
+            }
+        }
+        if self.record.is_some() {
+            let mut pts = Vec::new();
+            if let Some(dt) = self.sample_interval {
+                while self.next_sample < t1 {
+                    let ts = self.next_sample;
+                    let e = self.eval(ts, step.at(ts).as_slice(), &seg, &r);
+                    pts.push(to_point(ts, &e));
+                    self.next_sample += dt;
+                }
+            }
+            let e = self.eval(t1, y1, &seg, &r);
+            pts.push(to_point(t1, &e));
+            if let Some(rec) = self.record.as_mut() {
+                rec.extend(pts);
+            }
+        }
+        self.step_regime = self.regime;
+
+        // Early end: nothing can change any more.
+        if self.early_end_enabled && t1 < self.t_end && self.robot.stopped() && !self.regime.obj_contact {
+            let seg = *self.robot.current();
+            let e = self.eval(t1, y1, &seg, &self.regime);
+            let tool_settled = match self.layout.tool {
+                None => true,
+                Some(_) => {
+                    self.regime.tool_stuck || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
+                }
+            };
+            let object_done = match self.layout.object {
+                None => true,
+                Some(_) => {
+                    if self.p.mu_n > 0.0 {
+                        self.regime.obj_stuck
+                    } else {
+                        e.v_p >= e.v_t.max(0.0)
+                    }
+                }
+            };
+            if tool_settled && object_done {
+                self.early_end = Some(t1);
+                ctl.stop();
+            }
+        }
+    }
+}
+
+#[inline]
+fn pos15(d: f64) -> f64 {
+    if d > 0.0 {
+        d * d.sqrt()
+    } else {
+        0.0
+    }
+}
+
+pub(crate) fn to_point(t: f64, e: &Eval) -> TrajectoryPoint {
+    TrajectoryPoint {
+        t,
+        x_r: e.x_r,
+        v_r: e.v_r,
+        x_t: e.x_t,
+        v_t: e.v_t,
+        x_p: e.x_p,
+        v_p: e.v_p,
+        s: e.s,
+        p1: e.p1,
+        f_c: e.f_c,
+        f_r: e.f_r,
+    }
+}
+
+impl<const N: usize> OdeSystem<N> for Model {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        let e = self.eval(t, y.as_slice(), self.robot.current(), &self.regime);
+        let l = &self.layout;
+        let mut dy = State::<N>::zeros();
+        if let Some(i) = l.tool {
+            dy[i] = e.v_t;
+            dy[i + 1] = e.a_t;
+        }
+        if let Some(j) = l.object {
+            dy[j] = if self.regime.obj_stuck { 0.0 } else { e.v_p };
+            dy[j + 1] = e.a_p;
+        }
+        if let Some(k) = l.work {
+            dy[k] = e.p_work;
+        }
+        if let Some(k) = l.d_orifice {
+            dy[k] = e.p_orifice;
+        }
+        if let Some(k) = l.d_friction {
+            dy[k] = e.p_friction;
+        }
+        if let Some(k) = l.d_contact {
+            dy[k] = e.p_contact;
+        }
+        if let Some(k) = l.d_plane {
+            dy[k] = e.p_plane;
+        }
+        if let Some(k) = l.contact_impulse {
+            dy[k] = e.f_c;
+        }
+        dy
+    }
+
+    fn event_count(&self) -> usize {
+        self.n_events
+    }
+
+    fn events(&self, t: f64, y: &State<N>, g: &mut [f64]) {
+        for (i, gi) in g.iter_mut().enumerate().take(self.n_events) {
+            *gi = self.event_value(self.events[i], t, y.as_slice());
+        }
+    }
+
+    fn event_direction(&self, i: usize) -> Direction {
+        match self.events.get(i).copied() {
+            Some(EV_SENSOR) => Direction::Rising,
+            Some(EV_STROKE_MAX) => Direction::Falling,
+            _ => Direction::Both,
+        }
+    }
+
+    fn on_event(&mut self, i: usize, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
+        let kind = self.events[i];
+        self.handle_event(kind, t, y.as_mut_slice(), ctl)
+    }
+
+    fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
+        if let Some(tb) = self.pending_brake {
+            if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {
+                self.pending_brake = None;
+                self.brake_now(t, y.as_slice(), ctl);
+                return EventAction::Continue;
+            }
+        }
+        if let Some(name) = self.robot.on_time(t) {
+            self.log_event(name, t, y.as_slice());
+        }
+        EventAction::Continue
+    }
+
+    fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
+        self.observe_step(step, ctl);
+    }
+}
+
+/// Phase of the robot at the end (for the summary and tests).
+pub fn phase_name(p: Phase) -> &'static str {
+    match p {
+        Phase::Accelerating => "accelerating",
+        Phase::Cruising => "cruising",
+        Phase::Braking => "braking",
+        Phase::Stopped => "stopped",
+    }
+}

@@ -1,0 +1,275 @@
+//! One run: scene in, summary (and optionally trajectory and event log) out.
+//!
+//! The scene is validated, assembled into a [`Model`] holding only its parts, solved with
+//! `cushion-ode` over a state of the size the scene needs (the integrator is generic over the
+//! state size `N`; the run picks `N` from the scene's [`Layout`] at run time), and reduced to a
+//! [`Summary`].
+//!
+//! - Robot impulse `int F_r dt` is exact from momentum: `F_r = -(m_t a_t + F_c)` and
+//!   `m_p a_p = F_c` give `int F_r dt = -(m_t dv_t + m_p dv_p)` (rigid: `dv_r` for `dv_t`); with
+//!   plane friction `int F_c dt` is a quadrature state instead.
+//! - Early end: once the robot stands, the tool has settled (stuck by dry friction, or its
+//!   relative speed below `100 atol` m/s and its acceleration below `1000 atol` m/s^2), and the
+//!   object is out of contact and either free and not slower than the tool or stuck on the
+//!   plane, nothing can change any more: the run stops and the final values at `t_end` are
+//!   extrapolated exactly (object at constant speed, everything else at rest).
+
+use crate::config::{Module, Scene};
+use crate::model::{to_point, Model};
+use crate::physics;
+use crate::summary::{RunStatus, SolverStats, Summary};
+use crate::trajectory::{EventLogEntry, Trajectory};
+use cushion_ode::{Output, SolverOptions, State, Stats, Status, Tolerance};
+
+/// What to record besides the summary.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunOptions {
+    /// Record the trajectory: every accepted step's end and every event, plus uniform samples
+    /// every `sample_interval` seconds from the dense output when that is set.
+    pub trajectory: bool,
+    pub sample_interval: Option<f64>,
+}
+
+/// What one run yields.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunResult {
+    pub summary: Summary,
+    /// `Some` when `RunOptions::trajectory` was set and the scene was valid.
+    pub trajectory: Option<Trajectory>,
+    /// Every event in time order (always recorded; it is short).
+    pub events: Vec<EventLogEntry>,
+}
+
+/// The largest state a scene can need (tool 2 + object 2 + ledger 5 + contact impulse 1).
+pub const MAX_STATES: usize = 10;
+
+struct Outcome {
+    status: Status,
+    message: String,
+    t: f64,
+    y: Vec<f64>,
+    stats: Stats,
+}
+
+fn run<const N: usize>(model: &mut Model, opts: &SolverOptions, t_end: f64) -> Outcome {
+    let y0 = State::<N>::from_column_slice(&model.y0);
+    let sol = cushion_ode::solve(model, 0.0, y0, t_end, opts);
+    Outcome { status: sol.status, message: sol.message, t: sol.t, y: sol.y.as_slice().to_vec(), stats: sol.stats }
+}
+
+/// The integrator settings of a scene.
+pub fn solver_options(scene: &Scene) -> SolverOptions {
+    let mut time_stops = Vec::new();
+    if scene.robot.start == crate::config::RobotStart::Rest {
+        time_stops.push(scene.robot.approach_speed / scene.robot.acceleration);
+    }
+    SolverOptions {
+        method: scene.solver.method,
+        rtol: Tolerance::Scalar(scene.solver.rtol),
+        atol: Tolerance::Scalar(scene.solver.atol),
+        fixed_step: scene.solver.fixed_step,
+        max_steps: scene.solver.max_steps,
+        stiffness: scene.solver.stiffness,
+        time_stops,
+        output: Output::None,
+        ..SolverOptions::default()
+    }
+}
+
+/// Run one scene. Never panics: an invalid scene gives status `invalid` with the validation
+/// message; a solver failure gives its status and message.
+pub fn simulate(scene: &Scene, opts: &RunOptions) -> RunResult {
+    if let Err(e) = scene.validate() {
+        return RunResult { summary: Summary::invalid(e.to_string()), trajectory: None, events: Vec::new() };
+    }
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| simulate_valid(scene, opts))) {
+        Ok(r) => r,
+        Err(_) => RunResult {
+            summary: Summary::invalid("internal error: the model panicked (please report this scene)"),
+            trajectory: None,
+            events: Vec::new(),
+        },
+    }
+}
+
+/// Energy ledger of a finished run: `(residual, [W, dKE, dE_gas, dE_elastic, D_total])`.
+pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f64; 5])> {
+    let l = model.layout;
+    let w = y[l.work?];
+    let p = &model.p;
+    let seg0 = *model.robot.segment_at(0.0);
+    let seg1 = *model.robot.segment_at(t);
+    let tool_v = |t: f64, y: &[f64], seg: &physics::Segment| match l.tool {
+        Some(i) => y[i + 1],
+        None => seg.at(t).1,
+    };
+    let tool_x = |t: f64, y: &[f64], seg: &physics::Segment| match l.tool {
+        Some(i) => y[i],
+        None => seg.at(t).0,
+    };
+    let y0 = &model.y0;
+    let ke = |t: f64, y: &[f64], seg: &physics::Segment| {
+        let vt = tool_v(t, y, seg);
+        let mut k = 0.5 * p.m_t * vt * vt;
+        if let Some(j) = l.object {
+            k += 0.5 * p.m_p * y[j + 1] * y[j + 1];
+        }
+        k
+    };
+    let stored = |t: f64, y: &[f64], seg: &physics::Segment| -> (f64, f64) {
+        let (x_r, _, _) = seg.at(t);
+        let x_t = tool_x(t, y, seg);
+        let s = x_r - x_t;
+        let mut gas = 0.0;
+        let mut el = 0.0;
+        match p.module {
+            Module::Hydraulic => gas = physics::gas_energy(p.p10, p.v_g0, p.a_p, p.kappa, s),
+            Module::Bistable => el += physics::bistable_energy(p.k_b, p.w, p.h, s + p.e),
+            Module::Rigid => {}
+        }
+        if l.tool.is_some() {
+            el += physics::hunt_crossley_energy(p.k_e, -s) + physics::hunt_crossley_energy(p.k_e, s - p.stroke);
+        }
+        if let Some(j) = l.object {
+            el += physics::hunt_crossley_energy(p.k_c, x_t - y[j]);
+        }
+        (gas, el)
+    };
+    let d_ke = ke(t, y, &seg1) - ke(0.0, y0, &seg0);
+    let (g1, e1) = stored(t, y, &seg1);
+    let (g0, e0) = stored(0.0, y0, &seg0);
+    let (d_gas, d_el) = (g1 - g0, e1 - e0);
+    let ds = [l.d_orifice, l.d_friction, l.d_contact, l.d_plane];
+    let d_total: f64 = ds.iter().flatten().map(|&k| y[k]).sum();
+    let mut scale = w.abs().max(d_ke.abs()).max(d_gas.abs()).max(d_el.abs());
+    for k in ds.iter().flatten() {
+        scale = scale.max(y[*k].abs());
+    }
+    let mismatch = w - (d_ke + d_gas + d_el + d_total);
+    let residual = if scale > 0.0 { mismatch.abs() / scale } else { mismatch.abs() };
+    Some((residual, [w, d_ke, d_gas, d_el, d_total]))
+}
+
+fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
+    let mut model = Model::new(scene);
+    if opts.trajectory {
+        model.start_recording(opts.sample_interval);
+    }
+    let sopts = solver_options(scene);
+    let t_end = scene.t_end;
+    let out = match model.layout.n.max(1) {
+        1 => run::<1>(&mut model, &sopts, t_end),
+        2 => run::<2>(&mut model, &sopts, t_end),
+        3 => run::<3>(&mut model, &sopts, t_end),
+        4 => run::<4>(&mut model, &sopts, t_end),
+        5 => run::<5>(&mut model, &sopts, t_end),
+        6 => run::<6>(&mut model, &sopts, t_end),
+        7 => run::<7>(&mut model, &sopts, t_end),
+        8 => run::<8>(&mut model, &sopts, t_end),
+        9 => run::<9>(&mut model, &sopts, t_end),
+        10 => run::<10>(&mut model, &sopts, t_end),
+        n => {
+            return RunResult {
+                summary: Summary::invalid(format!("internal error: {n} states (at most {MAX_STATES})")),
+                trajectory: None,
+                events: Vec::new(),
+            }
+        }
+    };
+    let status = match out.status {
+        Status::Success | Status::StoppedByEvent => RunStatus::Ok,
+        Status::MaxSteps => RunStatus::MaxSteps,
+        Status::StepTooSmall => RunStatus::StepTooSmall,
+        Status::NonFinite => RunStatus::NonFinite,
+        Status::Stiff => RunStatus::Stiff,
+        Status::InvalidInput => RunStatus::Invalid,
+    };
+    let mut message = if status == RunStatus::Ok { String::new() } else { out.message.clone() };
+    if status == RunStatus::Ok && out.stats.stiff {
+        message = format!(
+            "warning: stiffness detected since t = {} (an explicit method is inefficient here)",
+            out.stats.stiff_since.unwrap_or(f64::NAN)
+        );
+    }
+
+    // Final state; extrapolated exactly to t_end after an early end.
+    let mut y = out.y.clone();
+    let mut t = out.t;
+    if let Some(te) = model.early_end {
+        let l = model.layout;
+        if let Some(j) = l.object {
+            if !(model.p.mu_n > 0.0 && model.regime.obj_stuck) {
+                y[j] += y[j + 1] * (t_end - te);
+            }
+        }
+        t = t_end;
+        let pt = model.point_at(te, &out.y);
+        model.log.push(EventLogEntry { t: te, name: "early_end".into(), point: pt });
+    }
+    let l = model.layout;
+    let p = model.p.clone();
+    let seg_end = *model.robot.segment_at(t);
+    let e_end = model.eval(t, &y, &seg_end, &model.regime);
+
+    let (object_final_velocity, object_final_momentum, object_travel) = match l.object {
+        Some(j) => (Some(y[j + 1]), Some(p.m_p * y[j + 1]), Some(y[j] - model.y0[j])),
+        None => (None, None, None),
+    };
+    // Robot impulse from momentum.
+    let seg0 = *model.robot.segment_at(0.0);
+    let v_t0 = match l.tool {
+        Some(i) => model.y0[i + 1],
+        None => seg0.at(0.0).1,
+    };
+    let mut impulse = -p.m_t * (e_end.v_t - v_t0);
+    if let Some(k) = l.contact_impulse {
+        impulse -= y[k];
+    } else if let Some(j) = l.object {
+        impulse -= p.m_p * (y[j + 1] - model.y0[j + 1]);
+    }
+    let energy_residual = energy_ledger(&model, t, &y).map(|(r, _)| r);
+    let max_gas_pressure = match p.module {
+        Module::Hydraulic => Some(physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, model.metrics.max_stroke)),
+        _ => None,
+    };
+    let t_brake = model.robot.t_brake;
+    let m = &model.metrics;
+    let summary = Summary {
+        status,
+        message,
+        t_detect: m.t_detect,
+        t_brake,
+        peak_robot_force: m.peak_fr,
+        t_peak_robot_force: m.t_peak_fr,
+        robot_impulse: impulse,
+        peak_contact_force: m.peak_fc,
+        object_impacts: m.object_impacts,
+        forward_stop_impacts: m.fwd_impacts,
+        back_stop_impacts: m.back_impacts,
+        object_final_velocity,
+        object_final_momentum,
+        object_travel,
+        max_stroke: if l.tool.is_some() { m.max_stroke } else { 0.0 },
+        back_stop_hit: m.back_hit,
+        max_gas_pressure,
+        energy_residual,
+        stats: SolverStats {
+            steps: out.stats.steps,
+            rejected: out.stats.rejected,
+            rhs_evals: out.stats.rhs_evals,
+            events: out.stats.events,
+            stiff: out.stats.stiff,
+        },
+    };
+    let trajectory = model.record.take().map(|mut pts| {
+        if model.early_end.is_some() {
+            pts.push(to_point(t, &e_end));
+        }
+        pts.sort_by(|a, b| a.t.total_cmp(&b.t));
+        pts.dedup_by(|b, a| a.t == b.t);
+        Trajectory { points: pts }
+    });
+    let mut events = std::mem::take(&mut model.log);
+    events.sort_by(|a, b| a.t.total_cmp(&b.t));
+    RunResult { summary, trajectory, events }
+}
