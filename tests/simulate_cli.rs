@@ -1,0 +1,265 @@
+//! `cushion simulate` run as a user runs it: summary, `--set`, scene files, and the trajectory
+//! outputs (`--csv`, `--mcap`, `--plot`) checked against the JSON summary.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn cushion(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_cushion"))
+        .arg("simulate")
+        .args(args)
+        .output()
+        .expect("run cushion")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+/// Run with `--json`, expect status 0 and exactly one JSON object on stdout.
+fn json(args: &[&str]) -> Value {
+    let mut a = args.to_vec();
+    a.push("--json");
+    let o = cushion(&a);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "args {args:?}\nstdout: {}\nstderr: {}",
+        stdout(&o),
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // from_str rejects trailing content: stdout holds exactly one JSON value.
+    let v: Value = serde_json::from_str(&stdout(&o)).expect("stdout is one JSON value");
+    assert!(v.is_object());
+    v
+}
+
+fn f(v: &Value, key: &str) -> f64 {
+    v[key].as_f64().unwrap_or_else(|| panic!("`{key}` is not a number: {}", v[key]))
+}
+
+fn close(a: f64, b: f64, rel: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs()).max(1e-300)
+}
+
+/// CSV trajectory: header and rows (None for empty cells).
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|c| if c.is_empty() { None } else { Some(c.parse::<f64>().unwrap()) })
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    (header, rows)
+}
+
+fn col(header: &[String], name: &str) -> usize {
+    header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))
+}
+
+const SUMMARY_NAMES: [&str; 16] = [
+    "status",
+    "message",
+    "t_detect",
+    "t_brake",
+    "peak_robot_force",
+    "t_peak_robot_force",
+    "robot_impulse",
+    "peak_contact_force",
+    "object_impacts",
+    "object_final_velocity",
+    "object_final_momentum",
+    "object_travel",
+    "max_stroke",
+    "back_stop_hit",
+    "max_gas_pressure",
+    "energy_residual",
+];
+
+#[test]
+fn json_summary_has_the_spec_names() {
+    let v = json(&[]);
+    for name in SUMMARY_NAMES {
+        assert!(v.get(name).is_some(), "missing `{name}` in {v}");
+    }
+    for name in ["steps", "rejected", "rhs_evals", "events", "stiff"] {
+        assert!(v["stats"].get(name).is_some(), "missing `stats.{name}` in {v}");
+    }
+    assert_eq!(v["status"], "ok");
+    assert!(v["stats"]["steps"].as_u64().unwrap() > 0);
+    // Default scene: hydraulic, the object is hit, the sensor switches, dead time 70 ms.
+    let t_detect = f(&v, "t_detect");
+    assert!(t_detect > 0.0 && t_detect < 0.3);
+    assert!(close(f(&v, "t_brake") - t_detect, 0.070, 1e-9));
+    assert!(f(&v, "max_gas_pressure") >= 1000.0, "gas starts at p10 = 1000 Pa");
+    assert!(f(&v, "object_final_velocity") > 0.0);
+    assert!(close(f(&v, "object_final_momentum"), 0.246 * f(&v, "object_final_velocity"), 1e-9));
+    assert!(v["object_impacts"].as_u64().unwrap() >= 1);
+}
+
+#[test]
+fn readable_summary_names_fields_and_units() {
+    let o = cushion(&[]);
+    assert_eq!(o.status.code(), Some(0));
+    let out = stdout(&o);
+    for text in ["status", "ok", "t_detect", "peak_robot_force", " N ", "object_final_velocity", "m/s", "hydraulic"] {
+        assert!(out.contains(text), "summary lacks `{text}`:\n{out}");
+    }
+    // Aligned: every value starts in the same column.
+    let value_column = |l: &str| {
+        let i = l.find(' ').unwrap();
+        i + (l[i..].len() - l[i..].trim_start().len())
+    };
+    let starts: Vec<usize> = out.lines().map(value_column).collect();
+    assert!(starts.windows(2).all(|w| w[0] == w[1]), "not aligned:\n{out}");
+}
+
+#[test]
+fn set_changes_the_result() {
+    let base = json(&[]);
+    let short = json(&["--set", "robot.dead_time=0.01"]);
+    assert!(close(f(&short, "t_brake") - f(&short, "t_detect"), 0.010, 1e-9));
+    assert_ne!(f(&short, "object_final_velocity"), f(&base, "object_final_velocity"));
+
+    let bistable = json(&["--set", "module=bistable", "--set", "robot.dead_time=0.01"]);
+    assert!(bistable["max_gas_pressure"].is_null(), "no gas in the bistable module");
+    let rigid = json(&["--set", "module=rigid"]);
+    assert!(rigid["max_gas_pressure"].is_null());
+    // The rigid tool hits harder than the hydraulic module.
+    assert!(f(&rigid, "peak_robot_force").abs() > f(&base, "peak_robot_force").abs());
+
+    // Integers are accepted for float keys, solver keys are settable.
+    let tight = json(&["--set", "object.mass=1", "--set", "solver.rtol=1e-10"]);
+    assert!(close(f(&tight, "object_final_momentum"), f(&tight, "object_final_velocity"), 1e-9));
+}
+
+#[test]
+fn scene_file_and_set_agree_and_set_wins() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::write(&scene, "module = \"bistable\"\n\n[robot]\ndead_time = 0.01\n").unwrap();
+    let from_file = json(&[scene.to_str().unwrap()]);
+    let from_set = json(&["--set", "module=bistable", "--set", "robot.dead_time=0.01"]);
+    assert_eq!(from_file, from_set);
+
+    let overridden = json(&[scene.to_str().unwrap(), "--set", "module=hydraulic", "--set", "robot.dead_time=0.07"]);
+    assert_eq!(overridden, json(&[]));
+}
+
+#[test]
+fn csv_and_mcap_agree_with_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("run.csv");
+    let mcap = dir.path().join("run.mcap");
+    let v = json(&["--csv", csv.to_str().unwrap(), "--mcap", mcap.to_str().unwrap()]);
+
+    // Only the two requested files, no temporaries left behind.
+    let mut names: Vec<_> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["run.csv", "run.mcap"]);
+
+    // CSV
+    let (header, rows) = read_csv(&csv);
+    assert_eq!(header, ["t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r"]);
+    assert!(rows.len() > 100, "{} rows", rows.len());
+    assert!(rows.iter().all(|r| r.len() == 11));
+    let (it, ixp, ivp, is, ifr) =
+        (col(&header, "t"), col(&header, "x_p"), col(&header, "v_p"), col(&header, "s"), col(&header, "F_r"));
+    let t: Vec<f64> = rows.iter().map(|r| r[it].unwrap()).collect();
+    assert_eq!(t[0], 0.0);
+    assert!(t.windows(2).all(|w| w[0] <= w[1]), "time ascends");
+    let last = rows.last().unwrap();
+    assert!(close(last[ivp].unwrap(), f(&v, "object_final_velocity"), 1e-9));
+    assert!(close(last[ixp].unwrap() - rows[0][ixp].unwrap(), f(&v, "object_travel"), 1e-9));
+    let max_s = rows.iter().filter_map(|r| r[is]).fold(f64::MIN, f64::max);
+    assert!(max_s <= f(&v, "max_stroke") * (1.0 + 1e-9) + 1e-15);
+    assert!(max_s >= 0.5 * f(&v, "max_stroke"));
+    let peak = f(&v, "peak_robot_force");
+    let max_fr = rows.iter().filter_map(|r| r[ifr]).fold(0.0f64, |m, x| m.max(x.abs()));
+    assert!(max_fr <= peak.abs() * (1.0 + 1e-9));
+    assert!(max_fr >= 0.5 * peak.abs());
+
+    // MCAP
+    let bytes = std::fs::read(&mcap).unwrap();
+    let mut state = Vec::new();
+    let mut events = Vec::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        assert_eq!(m.channel.message_encoding, "json");
+        let schema = m.channel.schema.as_ref().expect("schema");
+        assert_eq!(schema.encoding, "jsonschema");
+        let _: Value = serde_json::from_slice(&schema.data).expect("schema is JSON");
+        let body: Value = serde_json::from_slice(&m.data).unwrap();
+        match m.channel.topic.as_str() {
+            "/state" => state.push((m.log_time, m.publish_time, body)),
+            "/events" => events.push((m.log_time, body)),
+            other => panic!("unexpected topic {other}"),
+        }
+    }
+    assert_eq!(state.len(), rows.len(), "one /state message per CSV row");
+    for (i, (log, publish, body)) in state.iter().enumerate() {
+        assert_eq!(log, publish);
+        assert_eq!(*log, (t[i] * 1e9).round() as u64);
+        assert_eq!(body["t"].as_f64().unwrap(), t[i]);
+    }
+    let (_, _, last_msg) = state.last().unwrap();
+    assert_eq!(last_msg["v_p"].as_f64().unwrap(), last[ivp].unwrap());
+    assert_eq!(last_msg["F_r"].as_f64().unwrap(), last[ifr].unwrap());
+    for name in ["x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r"] {
+        assert!(last_msg.get(name).is_some(), "/state lacks {name}");
+    }
+    let sensor = events.iter().find(|(_, e)| e["name"] == "sensor").expect("a sensor event");
+    assert_eq!(sensor.1["t"].as_f64().unwrap(), f(&v, "t_detect"));
+    assert_eq!(sensor.0, (f(&v, "t_detect") * 1e9).round() as u64);
+    assert!(sensor.1["point"]["s"].as_f64().unwrap() > 0.0);
+    assert!(events.iter().any(|(_, e)| e["name"] == "brake"));
+    assert!(events.windows(2).all(|w| w[0].0 <= w[1].0), "events in time order");
+}
+
+#[test]
+fn absent_quantities_are_empty_cells() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("bistable.csv");
+    json(&["--set", "module=bistable", "--csv", csv.to_str().unwrap()]);
+    let (header, rows) = read_csv(&csv);
+    let ip1 = col(&header, "p1");
+    assert!(rows.iter().all(|r| r[ip1].is_none()), "no gas: p1 cells are empty");
+    assert!(rows.iter().all(|r| r[col(&header, "F_r")].is_some()));
+}
+
+#[test]
+fn plot_writes_a_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("fig3.svg");
+    let o = cushion(&["--plot", svg.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg"));
+    assert!(text.trim_end().ends_with("</svg>"));
+    for label in ["Positions", "Velocities", "Gas pressure", "Forces", "time [ms]", "detection", "force on the robot F_r"] {
+        assert!(text.contains(label), "figure lacks `{label}`");
+    }
+    assert!(stdout(&o).contains("fig3.svg"), "the summary says what was written");
+    if let Ok(dir) = std::env::var("CUSHION_FIGURE_DIR") {
+        std::fs::copy(&svg, Path::new(&dir).join("simulate_default.svg")).unwrap();
+    }
+}
+
+#[test]
+fn json_stdout_stays_clean_with_outputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("f.svg");
+    let csv = dir.path().join("t.csv");
+    // json() asserts stdout is exactly one JSON value.
+    json(&["--plot", svg.to_str().unwrap(), "--csv", csv.to_str().unwrap()]);
+    assert!(svg.exists() && csv.exists());
+}
