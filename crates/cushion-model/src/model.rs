@@ -642,23 +642,46 @@ impl Model {
         let seg = *self.robot.segment_at(0.5 * (t0 + t1));
         let r = self.step_regime;
         const K: usize = 4;
-        for k in 1..=K {
-            let t = if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
+        let mut fr_best = (0usize, 0.0f64);
+        let mut fc_best = (0usize, 0.0f64);
+        let tk = |k: usize| if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
+        for k in 0..=K {
+            let t = tk(k);
             let e = if k == K {
                 self.eval(t, y1, &seg, &r)
             } else {
                 self.eval(t, step.at(t).as_slice(), &seg, &r)
             };
-            if e.f_r.abs() > self.metrics.peak_fr.abs() {
-                self.metrics.peak_fr = e.f_r;
-                self.metrics.t_peak_fr = t;
+            if e.f_r.abs() > fr_best.1.abs() {
+                fr_best = (k, e.f_r);
             }
-            if e.f_c > self.metrics.peak_fc {
-                self.metrics.peak_fc = e.f_c;
+            if e.f_c > fc_best.1 {
+                fc_best = (k, e.f_c);
             }
             if self.layout.tool.is_some() && e.s > self.metrics.max_stroke {
                 self.metrics.max_stroke = e.s;
             }
+        }
+        // A new peak: refine it inside the step by golden-section search on the dense output
+        // (only while the peak grows, so it costs nothing on most steps).
+        if fr_best.1.abs() > self.metrics.peak_fr.abs() {
+            let (lo, hi) = (tk(fr_best.0.saturating_sub(1)), tk((fr_best.0 + 1).min(K)));
+            let f = |t: f64| self.eval(t, step.at(t).as_slice(), &seg, &r).f_r;
+            let (t, v) = golden_max(|t| f(t).abs(), lo, hi, tk(fr_best.0), fr_best.1.abs());
+            let v_signed = f(t);
+            if v > fr_best.1.abs() {
+                fr_best = (0, v_signed);
+                self.metrics.t_peak_fr = t;
+            } else {
+                self.metrics.t_peak_fr = tk(fr_best.0);
+            }
+            self.metrics.peak_fr = fr_best.1;
+        }
+        if fc_best.1 > self.metrics.peak_fc {
+            let (lo, hi) = (tk(fc_best.0.saturating_sub(1)), tk((fc_best.0 + 1).min(K)));
+            let f = |t: f64| self.eval(t, step.at(t).as_slice(), &seg, &r).f_c;
+            let (_, v) = golden_max(f, lo, hi, tk(fc_best.0), fc_best.1);
+            self.metrics.peak_fc = v.max(fc_best.1);
         }
         if self.record.is_some() {
             let mut pts = Vec::new();
@@ -704,6 +727,42 @@ impl Model {
             }
         }
     }
+}
+
+/// Largest value of `f` on `[lo, hi]` by golden-section search, starting from a known sample
+/// `(t_best, f_best)`; returns `(t, f(t))` of the best point seen.
+fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, t_best: f64, f_best: f64) -> (f64, f64) {
+    const R: f64 = 0.618_033_988_749_894_9;
+    let mut best = (t_best, f_best);
+    let mut a = hi - R * (hi - lo);
+    let mut b = lo + R * (hi - lo);
+    let mut fa = f(a);
+    let mut fb = f(b);
+    for _ in 0..40 {
+        if fa > best.1 {
+            best = (a, fa);
+        }
+        if fb > best.1 {
+            best = (b, fb);
+        }
+        if (hi - lo) <= 1e-12 * (1.0 + hi.abs()) {
+            break;
+        }
+        if fa >= fb {
+            hi = b;
+            b = a;
+            fb = fa;
+            a = hi - R * (hi - lo);
+            fa = f(a);
+        } else {
+            lo = a;
+            a = b;
+            fa = fb;
+            b = lo + R * (hi - lo);
+            fb = f(b);
+        }
+    }
+    (best.0, best.1)
 }
 
 #[inline]
