@@ -1,5 +1,8 @@
 //! Step-size control: Hairer's PI controller for DOPRI5 and his initial step selection.
 
+/// `ln(1e-4)`: Hairer's floor and starting value of `facold`.
+const LN_1E_4: f64 = -9.210_340_371_976_184;
+
 /// PI controller (Hairer's DOPRI5: `fac = err^(0.2 - 0.75 beta) / facold^beta`, safety 0.9,
 /// ratio within [0.2, 10], no growth right after a rejection).
 #[derive(Clone, Copy, Debug)]
@@ -10,7 +13,9 @@ pub struct PiController {
     pub max_ratio: f64,
     /// Exponent `1/order - 0.75 beta`.
     expo: f64,
-    facold: f64,
+    /// `ln(facold)`: Hairer's `facold^beta` is `exp(beta * ln_facold)`. Working in logarithms
+    /// costs one `ln` and one `exp` a step instead of two `pow`.
+    ln_facold: f64,
     last_rejected: bool,
 }
 
@@ -23,26 +28,28 @@ impl PiController {
             min_ratio,
             max_ratio,
             expo: 1.0 / order as f64 - 0.75 * beta,
-            facold: 1e-4,
+            ln_facold: LN_1E_4,
             last_rejected: false,
         }
     }
 
     /// Forget the history (after an event changed the state).
     pub fn reset(&mut self) {
-        self.facold = 1e-4;
+        self.ln_facold = LN_1E_4;
         self.last_rejected = false;
     }
 
     /// Given the scaled error norm `err` of a step of size `h`, say whether it is accepted and
     /// which step size comes next.
     pub fn next(&mut self, err: f64, h: f64) -> (bool, f64) {
-        let fac11 = err.powf(self.expo);
+        // err = 0 gives ln = -inf and fac = 0: clamped to the largest growth, as with pow.
+        let ln_err = err.ln();
         if err <= 1.0 {
-            let fac = fac11 / self.facold.powf(self.beta);
+            // fac = err^expo / facold^beta
+            let fac = (self.expo * ln_err - self.beta * self.ln_facold).exp();
             let fac = (fac / self.safety).clamp(1.0 / self.max_ratio, 1.0 / self.min_ratio);
             let mut h_new = h / fac;
-            self.facold = err.max(1e-4);
+            self.ln_facold = ln_err.max(LN_1E_4);
             if self.last_rejected {
                 h_new = h_new.min(h);
             }
@@ -50,6 +57,7 @@ impl PiController {
             (true, h_new)
         } else {
             self.last_rejected = true;
+            let fac11 = (self.expo * ln_err).exp();
             (false, h / (fac11 / self.safety).min(1.0 / self.min_ratio))
         }
     }
@@ -98,6 +106,28 @@ mod tests {
     use super::*;
 
     #[test]
+    fn matches_hairers_pow_formula() {
+        // Same numbers as fac11 = err^expo, fac = fac11 / facold^beta, clamped, h / fac.
+        let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
+        let mut facold: f64 = 1e-4;
+        let errs: [f64; 5] = [0.5, 0.01, 0.9, 0.3, 1e-3];
+        let mut h = 1e-3;
+        for &err in &errs {
+            let fac = (err.powf(0.17) / facold.powf(0.04) / 0.9).clamp(0.1, 5.0);
+            let expected = h / fac;
+            let (ok, got) = c.next(err, h);
+            assert!(ok);
+            assert!((got - expected).abs() <= 1e-14 * expected, "{got} vs {expected}");
+            facold = err.max(1e-4);
+            h = got;
+        }
+        let (ok, got) = c.next(4.0, h);
+        assert!(!ok);
+        let expected = h / (4f64.powf(0.17) / 0.9).min(5.0_f64);
+        assert!((got - expected).abs() <= 1e-14 * expected);
+    }
+
+    #[test]
     fn accepts_small_errors_and_grows_at_most_tenfold() {
         let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
         let (ok, h) = c.next(1e-12, 1.0);
@@ -120,7 +150,7 @@ mod tests {
     fn error_of_one_gives_the_safety_factor_at_steady_state() {
         // With facold = 1 and err = 1, fac = 1/0.9: h_new = 0.9 h.
         let mut c = PiController::new(5, 0.9, 0.04, 0.2, 10.0);
-        c.facold = 1.0;
+        c.ln_facold = 0.0;
         let (ok, h) = c.next(1.0, 1.0);
         assert!(ok);
         assert!((h - 0.9).abs() < 1e-12);

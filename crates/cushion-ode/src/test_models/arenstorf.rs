@@ -20,8 +20,9 @@ impl OdeSystem<4> for Arenstorf {
     fn rhs(&self, _t: f64, y: &State<4>) -> State<4> {
         let mu = MU;
         let mup = 1.0 - mu;
-        let d1 = ((y[0] + mu).powi(2) + y[1] * y[1]).powf(1.5);
-        let d2 = ((y[0] - mup).powi(2) + y[1] * y[1]).powf(1.5);
+        let r1 = (y[0] + mu).powi(2) + y[1] * y[1];
+        let r2 = (y[0] - mup).powi(2) + y[1] * y[1];
+        let (d1, d2) = (r1 * r1.sqrt(), r2 * r2.sqrt());
         State::<4>::new(
             y[2],
             y[3],
