@@ -24,7 +24,7 @@ const BRAKE: RGBColor = RGBColor(110, 110, 110);
 const CONTACT: RGBColor = RGBColor(148, 103, 189);
 
 /// Figure size in pixels (width, height).
-pub const SIZE: (u32, u32) = (1000, 1300);
+pub const SIZE: (u32, u32) = (1200, 1300);
 
 /// One curve: label, colour, value of a point in plot units.
 struct Curve {
@@ -139,6 +139,9 @@ fn y_range(panel: &Panel, pts: &[TrajectoryPoint]) -> Option<(f64, f64)> {
     Some((lo - pad, hi + pad))
 }
 
+/// Width in pixels of the legend column to the right of each panel.
+const LEGEND_WIDTH: u32 = 240;
+
 fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, plotters::coord::Shift>,
     panel: &Panel,
@@ -150,12 +153,14 @@ where
     DB::ErrorType: 'static,
 {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| io::Error::other(format!("drawing the figure: {e:?}"));
+    let (w, _) = area.dim_in_pixel();
+    let (plot_area, legend_area) = area.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
     let range = y_range(panel, pts);
     let (y0, y1) = range.unwrap_or((0.0, 1.0));
-    let mut chart = ChartBuilder::on(area)
+    let mut chart = ChartBuilder::on(&plot_area)
         .caption(panel.caption, ("sans-serif", 17).into_font())
         .margin_left(10)
-        .margin_right(25)
+        .margin_right(15)
         .margin_top(5)
         .margin_bottom(5)
         .x_label_area_size(40)
@@ -177,6 +182,8 @@ where
         .draw()
         .map_err(err)?;
 
+    // Legend entries: (label, colour, dashed).
+    let mut legend: Vec<(String, RGBColor, bool)> = Vec::new();
     if range.is_none() {
         let x = t0 + 0.35 * (t1 - t0);
         chart
@@ -199,21 +206,15 @@ where
                 }
             }
             if segments.iter().all(|s| s.is_empty()) {
+                legend.push((format!("{} (n/a)", c.label), RGBColor(190, 190, 190), false));
                 continue;
             }
-            let color = c.color;
-            let mut labelled = false;
             for seg in segments.into_iter().filter(|s| !s.is_empty()) {
-                let anno = chart
-                    .draw_series(LineSeries::new(seg, color.stroke_width(2)))
+                chart
+                    .draw_series(LineSeries::new(seg, c.color.stroke_width(2)))
                     .map_err(err)?;
-                if !labelled {
-                    anno.label(c.label).legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(2))
-                    });
-                    labelled = true;
-                }
             }
+            legend.push((c.label.to_string(), c.color, false));
         }
     }
 
@@ -233,23 +234,25 @@ where
                 5,
                 color.stroke_width(2),
             ))
-            .map_err(err)?
-            .label(format!("{label} ({})", format_ms(t)))
-            .legend(move |(x, y)| {
-                EmptyElement::at((x, y))
-                    + PathElement::new(vec![(0, 0), (8, 0)], color.stroke_width(2))
-                    + PathElement::new(vec![(13, 0), (21, 0)], color.stroke_width(2))
-            });
+            .map_err(err)?;
+        legend.push((format!("{label} {}", format_ms(t)), color, true));
     }
 
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(RGBColor(160, 160, 160))
-        .label_font(("sans-serif", 13))
-        .draw()
-        .map_err(err)?;
+    // The legend column: a sample line and the label per entry, top-aligned with the plot.
+    let font = ("sans-serif", 13).into_font().color(&BLACK);
+    for (i, (label, color, dashed)) in legend.iter().enumerate() {
+        let y = 40 + 22 * i as i32;
+        let style = color.stroke_width(2);
+        if *dashed {
+            legend_area.draw(&PathElement::new(vec![(4, y), (12, y)], style)).map_err(err)?;
+            legend_area.draw(&PathElement::new(vec![(17, y), (25, y)], style)).map_err(err)?;
+        } else {
+            legend_area.draw(&PathElement::new(vec![(4, y), (28, y)], style)).map_err(err)?;
+        }
+        legend_area
+            .draw(&Text::new(label.as_str(), (36, y - 7), font.clone()))
+            .map_err(err)?;
+    }
     Ok(())
 }
 
@@ -309,7 +312,7 @@ mod tests {
         let svg = render_svg(&traj(true), &summary(), "hydraulic, dead time 70 ms").unwrap();
         assert!(svg.starts_with("<svg"));
         assert!(svg.trim_end().ends_with("</svg>"));
-        for text in ["Positions", "Velocities", "Gas pressure", "Forces", "time [ms]", "detection (10.5 ms)", "force on the robot F_r"] {
+        for text in ["Positions", "Velocities", "Gas pressure", "Forces", "time [ms]", "detection 10.5 ms", "force on the robot F_r"] {
             assert!(svg.contains(text), "missing {text}");
         }
         if let Ok(dir) = std::env::var("CUSHION_FIGURE_DIR") {
