@@ -636,6 +636,33 @@ impl Model {
         }
     }
 
+    /// Whether nothing can change any more after `(t, y)`: the robot stands, the tool has
+    /// settled (stuck, or relative speed and acceleration at the tolerance's level) and the
+    /// object is out of contact and either stuck on the plane or free and not slower than the
+    /// tool. Then the run may end early with its final values extrapolated exactly.
+    fn can_end_early(&self, t: f64, y: &[f64]) -> bool {
+        if !(self.early_end_enabled && t < self.t_end && self.robot.stopped() && !self.regime.obj_contact) {
+            return false;
+        }
+        let seg = *self.robot.current();
+        let e = self.eval(t, y, &seg, &self.regime);
+        let tool_settled = match self.layout.tool {
+            None => true,
+            Some(_) => self.regime.tool_stuck || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a),
+        };
+        let object_done = match self.layout.object {
+            None => true,
+            Some(_) => {
+                if self.p.mu_n > 0.0 {
+                    self.regime.obj_stuck
+                } else {
+                    e.v_p >= e.v_t.max(0.0)
+                }
+            }
+        };
+        tool_settled && object_done
+    }
+
     fn observe_step<const N: usize>(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
         let (t0, t1) = (step.t0, step.t1);
         let y1 = step.y1.as_slice();
@@ -702,29 +729,9 @@ impl Model {
         self.step_regime = self.regime;
 
         // Early end: nothing can change any more.
-        if self.early_end_enabled && t1 < self.t_end && self.robot.stopped() && !self.regime.obj_contact {
-            let seg = *self.robot.current();
-            let e = self.eval(t1, y1, &seg, &self.regime);
-            let tool_settled = match self.layout.tool {
-                None => true,
-                Some(_) => {
-                    self.regime.tool_stuck || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
-                }
-            };
-            let object_done = match self.layout.object {
-                None => true,
-                Some(_) => {
-                    if self.p.mu_n > 0.0 {
-                        self.regime.obj_stuck
-                    } else {
-                        e.v_p >= e.v_t.max(0.0)
-                    }
-                }
-            };
-            if tool_settled && object_done {
-                self.early_end = Some(t1);
-                ctl.stop();
-            }
+        if self.can_end_early(t1, y1) {
+            self.early_end = Some(t1);
+            ctl.stop();
         }
     }
 }
@@ -858,6 +865,10 @@ impl<const N: usize> OdeSystem<N> for Model {
         }
         if let Some(name) = self.robot.on_time(t) {
             self.log_event(name, t, y.as_slice());
+            if self.can_end_early(t, y.as_slice()) {
+                self.early_end = Some(t);
+                return EventAction::Stop;
+            }
         }
         EventAction::Continue
     }
