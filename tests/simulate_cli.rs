@@ -265,3 +265,50 @@ fn json_stdout_stays_clean_with_outputs() {
     json(&["--plot", svg.to_str().unwrap(), "--csv", csv.to_str().unwrap()]);
     assert!(svg.exists() && csv.exists());
 }
+
+#[test]
+fn a_failed_run_still_prints_its_summary_and_exits_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("partial.csv");
+    let o = cushion(&["--set", "solver.max_steps=10", "--json", "--csv", csv.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_str(&stdout(&o)).expect("one JSON object");
+    assert_eq!(v["status"], "max_steps");
+    assert!(v["message"].as_str().unwrap().contains("10"), "{}", v["message"]);
+    // The trajectory up to where the run stopped is written, and ends where the summary does.
+    let (header, rows) = read_csv(&csv);
+    assert!(!rows.is_empty());
+    let last_t = rows.last().unwrap()[col(&header, "t")].unwrap();
+    assert!(last_t < 0.3);
+    assert!(f(&v, "t_peak_robot_force") <= last_t, "the summary covers only the recorded run");
+
+    let human = cushion(&["--set", "solver.max_steps=10"]);
+    assert_eq!(human.status.code(), Some(1));
+    assert!(stdout(&human).contains("max_steps"));
+}
+
+#[test]
+fn free_tool_without_object() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("free.csv");
+    let mcap = dir.path().join("free.mcap");
+    let v = json(&["--set", "object.enabled=false", "--csv", csv.to_str().unwrap(), "--mcap", mcap.to_str().unwrap()]);
+    for name in ["object_final_velocity", "object_final_momentum", "object_travel", "t_detect"] {
+        assert!(v[name].is_null(), "`{name}` should be null without an object: {v}");
+    }
+    assert_eq!(v["object_impacts"], 0);
+    let (header, rows) = read_csv(&csv);
+    assert!(rows.iter().all(|r| r[col(&header, "x_p")].is_none() && r[col(&header, "v_p")].is_none()));
+    let bytes = std::fs::read(&mcap).unwrap();
+    let mut n = 0;
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        if m.channel.topic == "/state" {
+            let body: Value = serde_json::from_slice(&m.data).unwrap();
+            assert!(body.get("x_p").is_none() && body.get("v_p").is_none(), "absent fields left out");
+            assert!(body.get("x_t").is_some());
+            n += 1;
+        }
+    }
+    assert_eq!(n, rows.len());
+}
