@@ -8,13 +8,12 @@
 //! The detection time (sensor switching) is a dashed red vertical line in every panel, the
 //! brake start a dashed grey one.
 
-use std::io::{self, Write};
+use std::io;
 use std::path::Path;
 
 use cushion_model::{Summary, Trajectory, TrajectoryPoint};
 use plotters::prelude::*;
 
-use crate::trajectory_csv::write_atomically;
 
 const ROBOT: RGBColor = RGBColor(31, 119, 180);
 const TOOL: RGBColor = RGBColor(255, 127, 14);
@@ -111,7 +110,7 @@ pub fn render_svg(trajectory: &Trajectory, summary: &Summary, title: &str) -> io
 /// Draw figure 3 of one run into an SVG file (atomically).
 pub fn write_svg(path: &Path, trajectory: &Trajectory, summary: &Summary, title: &str) -> io::Result<()> {
     let svg = render_svg(trajectory, summary, title)?;
-    write_atomically(path, |w| w.write_all(svg.as_bytes()))
+    crate::atomic::write_atomic(path, svg.as_bytes())
 }
 
 fn draw_err<E: std::error::Error + Send + Sync + 'static>(e: E) -> io::Error {

@@ -10,9 +10,11 @@
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use cushion_model::{Trajectory, TrajectoryPoint};
+
+use crate::atomic::AtomicFile;
 
 /// Write `trajectory` as CSV to `path` (atomically).
 pub fn write_csv(path: &Path, trajectory: &Trajectory) -> io::Result<()> {
@@ -53,43 +55,16 @@ pub fn push_number(out: &mut String, v: f64) {
     }
 }
 
-/// Write a file atomically: `fill` writes into a temporary file in the target's directory,
-/// which is flushed, synced and renamed onto `path`. On any error the temporary file is
-/// removed and `path` is left as it was.
+/// Write a file atomically with [`crate::atomic::AtomicFile`]: `fill` writes into a temporary
+/// file beside `path`, which is then synced and renamed onto `path`. On any error the
+/// temporary file is removed and `path` is left as it was.
 pub(crate) fn write_atomically(
     path: &Path,
     fill: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>,
 ) -> io::Result<()> {
-    let tmp = temp_path_for(path);
-    let result = (|| {
-        let file = File::create(&tmp)?;
-        let mut w = BufWriter::new(file);
-        fill(&mut w)?;
-        let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all()?;
-        drop(file);
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
-/// `dir/.name.tmp.<pid>.<n>`: hidden, beside the target (same file system, so rename is atomic).
-fn temp_path_for(path: &Path) -> PathBuf {
-    use std::sync::atomic::{AtomicU64, Ordering};
-    static COUNTER: AtomicU64 = AtomicU64::new(0);
-    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
-    let name = path
-        .file_name()
-        .map(|s| s.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "output".to_string());
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    dir.join(format!(".{name}.tmp.{}.{n}", std::process::id()))
+    let mut file = AtomicFile::create(path)?;
+    fill(file.writer())?;
+    file.commit()
 }
 
 #[cfg(test)]
