@@ -104,13 +104,19 @@ fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
         return Err(Failure::Output("the run recorded no trajectory; nothing written".into()));
     }
 
-    if args.json {
+    let text = if args.json {
         match serde_json::to_string(summary) {
-            Ok(s) => println!("{s}"),
+            Ok(s) => s + "\n",
             Err(e) => return Err(Failure::Output(format!("summary as JSON: {e}"))),
         }
     } else {
-        print!("{}", human_summary(args, &scene, summary, &written));
+        human_summary(args, &scene, summary, &written)
+    };
+    // Not `print!`: a closed pipe (`cushion simulate | head -1`) must not panic.
+    {
+        use std::io::Write;
+        let mut out = std::io::stdout().lock();
+        let _ = out.write_all(text.as_bytes()).and_then(|_| out.flush());
     }
     Ok(if summary.status == RunStatus::Ok { 0 } else { 1 })
 }

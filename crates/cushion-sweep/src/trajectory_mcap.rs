@@ -279,6 +279,16 @@ mod tests {
         assert_eq!(e["name"], "brake");
         assert_eq!(e["point"]["t"].as_f64().unwrap(), 0.0823);
         assert_eq!(ev[1].log_time, 82_300_000);
+
+        // Indexed, with statistics (Foxglove seeks with these).
+        let summary = mcap::Summary::read(&bytes).unwrap().expect("summary section");
+        let stats = summary.stats.expect("statistics");
+        assert_eq!(stats.message_count, 52);
+        assert_eq!(stats.channel_count, 2);
+        assert_eq!(stats.schema_count, 2);
+        assert_eq!(stats.message_start_time, 0);
+        assert_eq!(stats.message_end_time, time_ns(49.0 * 0.006));
+        assert!(!summary.chunk_indexes.is_empty());
     }
 
     #[test]
