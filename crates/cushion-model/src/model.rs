@@ -203,6 +203,8 @@ pub struct Model {
     sample_interval: Option<f64>,
     next_sample: f64,
     pub(crate) early_end: Option<f64>,
+    fr_peak_step: Option<PeakStep>,
+    fc_peak_step: Option<PeakStep>,
     early_end_enabled: bool,
     t_end: f64,
     settle_v: f64,
@@ -332,6 +334,8 @@ impl Model {
             sample_interval: None,
             next_sample: 0.0,
             early_end: None,
+            fr_peak_step: None,
+            fc_peak_step: None,
             early_end_enabled: scene.solver.early_end,
             t_end: scene.t_end,
             settle_v: 100.0 * atol,
@@ -663,22 +667,49 @@ impl Model {
         tool_settled && object_done
     }
 
+    /// Refine the peaks of `|F_r|` and `F_c` inside the steps that hold their largest samples,
+    /// by golden-section search on the step's dense output (rebuilt from its five nodes).
+    pub(crate) fn refine_peaks(&mut self) {
+        let n = self.layout.n.max(1).min(MAX_STATES);
+        if let Some(c) = self.fr_peak_step.take() {
+            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).f_r;
+            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
+            let (t, v) = golden_max(|t| f(t).abs(), lo, hi, c.ts[c.k], self.metrics.peak_fr.abs());
+            if v > self.metrics.peak_fr.abs() {
+                self.metrics.peak_fr = f(t);
+                self.metrics.t_peak_fr = t;
+            }
+        }
+        if let Some(c) = self.fc_peak_step.take() {
+            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).f_c;
+            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
+            let (_, v) = golden_max(f, lo, hi, c.ts[c.k], self.metrics.peak_fc);
+            self.metrics.peak_fc = self.metrics.peak_fc.max(v);
+        }
+    }
+
     fn observe_step<const N: usize>(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
         let (t0, t1) = (step.t0, step.t1);
         let y1 = step.y1.as_slice();
         let seg = *self.robot.segment_at(0.5 * (t0 + t1));
         let r = self.step_regime;
-        const K: usize = 4;
+        // Five nodes of the step's dense output (a polynomial of degree 4 in t, so these five
+        // states reproduce it exactly); the physics is sampled at the four after t0.
+        let n = self.layout.n.max(1).min(MAX_STATES);
+        let tk = |k: usize| if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
+        let mut nodes = [[0.0; MAX_STATES]; K + 1];
+        for (k, node) in nodes.iter_mut().enumerate() {
+            let yk = match k {
+                0 => *step.y0,
+                K => *step.y1,
+                _ => step.at(tk(k)),
+            };
+            node[..n].copy_from_slice(&yk.as_slice()[..n]);
+        }
         let mut fr_best = (0usize, 0.0f64);
         let mut fc_best = (0usize, 0.0f64);
-        let tk = |k: usize| if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
-        for k in 0..=K {
-            let t = tk(k);
-            let e = if k == K {
-                self.eval(t, y1, &seg, &r)
-            } else {
-                self.eval(t, step.at(t).as_slice(), &seg, &r)
-            };
+        for (k, node) in nodes.iter().enumerate().skip(1) {
+            let e = self.eval(tk(k), &node[..n], &seg, &r);
             if e.f_r.abs() > fr_best.1.abs() {
                 fr_best = (k, e.f_r);
             }
@@ -689,26 +720,17 @@ impl Model {
                 self.metrics.max_stroke = e.s;
             }
         }
-        // A new peak: refine it inside the step by golden-section search on the dense output
-        // (only while the peak grows, so it costs nothing on most steps).
+        // A new largest sample: remember its step; the peak inside it is refined once, at the
+        // end of the run (`refine_peaks`).
+        let cand = |k: usize| PeakStep { ts: std::array::from_fn(tk), nodes, seg, regime: r, k };
         if fr_best.1.abs() > self.metrics.peak_fr.abs() {
-            let (lo, hi) = (tk(fr_best.0.saturating_sub(1)), tk((fr_best.0 + 1).min(K)));
-            let f = |t: f64| self.eval(t, step.at(t).as_slice(), &seg, &r).f_r;
-            let (t, v) = golden_max(|t| f(t).abs(), lo, hi, tk(fr_best.0), fr_best.1.abs());
-            let v_signed = f(t);
-            if v > fr_best.1.abs() {
-                fr_best = (0, v_signed);
-                self.metrics.t_peak_fr = t;
-            } else {
-                self.metrics.t_peak_fr = tk(fr_best.0);
-            }
             self.metrics.peak_fr = fr_best.1;
+            self.metrics.t_peak_fr = tk(fr_best.0);
+            self.fr_peak_step = Some(cand(fr_best.0));
         }
         if fc_best.1 > self.metrics.peak_fc {
-            let (lo, hi) = (tk(fc_best.0.saturating_sub(1)), tk((fc_best.0 + 1).min(K)));
-            let f = |t: f64| self.eval(t, step.at(t).as_slice(), &seg, &r).f_c;
-            let (_, v) = golden_max(f, lo, hi, tk(fc_best.0), fc_best.1);
-            self.metrics.peak_fc = v.max(fc_best.1);
+            self.metrics.peak_fc = fc_best.1;
+            self.fc_peak_step = Some(cand(fc_best.0));
         }
         if self.record.is_some() {
             let mut pts = Vec::new();
@@ -733,6 +755,43 @@ impl Model {
             self.early_end = Some(t1);
             ctl.stop();
         }
+    }
+}
+
+/// Samples of the physics per step (besides its start).
+const K: usize = 4;
+
+/// The largest state a scene can need (tool 2 + object 2 + ledger 5 + contact impulse 1).
+pub const MAX_STATES: usize = 10;
+
+/// A step that holds a peak candidate: its dense output as five equally spaced nodes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PeakStep {
+    ts: [f64; K + 1],
+    nodes: [[f64; MAX_STATES]; K + 1],
+    seg: Segment,
+    regime: Regime,
+    /// Index of the largest sample.
+    k: usize,
+}
+
+impl PeakStep {
+    /// The state at `t` by Lagrange interpolation through the nodes (exact for the degree-4
+    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods).
+    fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
+        let mut y = [0.0; MAX_STATES];
+        for j in 0..=K {
+            let mut l = 1.0;
+            for m in 0..=K {
+                if m != j {
+                    l *= (t - self.ts[m]) / (self.ts[j] - self.ts[m]);
+                }
+            }
+            for (yi, ni) in y.iter_mut().zip(self.nodes[j].iter()) {
+                *yi += l * ni;
+            }
+        }
+        y
     }
 }
 

@@ -47,7 +47,9 @@ pub fn orifice_pressure_drop(c0: f64, rho: f64, a_p: f64, a_o: f64, sd: f64) -> 
 /// Adiabatic gas pressure (Pa) at stroke `s`: `p10 (V_g0 / (V_g0 - A_p s))^kappa`.
 #[inline]
 pub fn gas_pressure(p10: f64, v_g0: f64, a_p: f64, kappa: f64, s: f64) -> f64 {
-    p10 * (v_g0 / (v_g0 - a_p * s)).powf(kappa)
+    // exp(kappa ln x) rather than powf: the same to a few ulp here, and several times cheaper
+    // than glibc's correctly rounded pow (this is the right-hand side's most expensive term).
+    p10 * (kappa * (v_g0 / (v_g0 - a_p * s)).ln()).exp()
 }
 
 /// Energy stored in the gas relative to `s = 0` (J): `int_0^s p1 A_p ds`

@@ -40,8 +40,7 @@ pub struct RunResult {
     pub events: Vec<EventLogEntry>,
 }
 
-/// The largest state a scene can need (tool 2 + object 2 + ledger 5 + contact impulse 1).
-pub const MAX_STATES: usize = 10;
+pub use crate::model::MAX_STATES;
 
 struct Outcome {
     status: Status,
@@ -176,6 +175,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
             }
         }
     };
+    model.refine_peaks();
     let status = match out.status {
         Status::Success | Status::StoppedByEvent => RunStatus::Ok,
         Status::MaxSteps => RunStatus::MaxSteps,
