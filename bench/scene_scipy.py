@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""The paper's hydraulic scene (sweeps/scenes/paper-hydraulic-dt70.toml) in plain SciPy.
+
+A reference for speed and for results: `solve_ivp` RK45 at the same tolerances as the Rust
+engine (rtol 1e-6, atol 1e-9), 4 states (x_t, v_t, x_p, v_p), the same physics as
+shared/SPEC.md sections 1-2 (sign-correct orifice, adiabatic gas, Hunt-Crossley contacts clamped
+at F >= 0, both end-stops, static preload equilibrium). Contacts are switched inside the
+right-hand side (no contact events: the plain way a SciPy user writes it); the sensor is a
+terminal event, and the robot's kinks are segment boundaries (sensor -> brake -> stop -> t_end),
+so the integrator never steps across them.
+
+    .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S]
+
+Prints time per run, right-hand-side evaluations, and the results to compare with
+`cargo run -p cushion-model --example run_scene -- sweeps/scenes/paper-hydraulic-dt70.toml`.
+"""
+
+import argparse
+import math
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+# Paper Table 1 and SPEC section 2 defaults (SI).
+L = 0.023
+M_T, M_P = 0.048, 0.246
+R_P, R_O = 0.020, 0.008
+A_P, A_O = math.pi * R_P**2, math.pi * R_O**2
+C0, RHO = 3.0, 900.0
+P10, VG0, KAPPA = 1000.0, 7.63e-5, 1.4
+B, D_DRY = 0.5, 0.0
+K_C, CHI_C = 0.6e6, 1.35e6
+K_E, CHI_E = 0.6e6, 1.35e6
+V_MAX, A_BRAKE = 1.0, 10.0
+S_SENSOR, GAP, T_END = 1.5e-3, 1e-3, 0.3
+RTOL, ATOL = 1e-6, 1e-9
+
+
+def hunt_crossley(k, chi, d, dd):
+    if d <= 0.0:
+        return 0.0
+    return max(0.0, d**1.5 * (k + chi * dd))
+
+
+def gas(s):
+    return P10 * (VG0 / (VG0 - A_P * s)) ** KAPPA
+
+
+def make_rhs(robot):
+    """robot(t) -> (x_r, v_r) on one segment of the profile."""
+
+    def rhs(t, y):
+        x_t, v_t, x_p, v_p = y
+        x_r, v_r = robot(t)
+        s = x_r - x_t
+        sd = v_r - v_t
+        dp = 0.5 * C0 * RHO * (A_P / A_O) ** 2 * sd * abs(sd)
+        f_fwd = hunt_crossley(K_E, CHI_E, -s, -sd)
+        f_back = hunt_crossley(K_E, CHI_E, s - L, sd)
+        f_c = hunt_crossley(K_C, CHI_C, x_t - x_p, v_t - v_p)
+        g = (gas(s) + dp) * A_P + B * sd + f_back - f_fwd
+        return [v_t, (g - f_c) / M_T, v_p, f_c / M_P]
+
+    return rhs
+
+
+def run(dead_time):
+    s0 = -brentq(lambda d: K_E * d**1.5 - gas(-d) * A_P, 0.0, 1e-2, xtol=1e-16, rtol=1e-15)
+    y = np.array([-s0, V_MAX, -s0 + GAP, 0.0])
+    nfev = 0
+
+    # Segment 1: cruising until the sensor switches (terminal event).
+    def sensor(t, y):
+        return (V_MAX * t - y[0]) - S_SENSOR
+
+    sensor.terminal = True
+    sensor.direction = 1
+    cruise = lambda t: (V_MAX * t, V_MAX)
+    sol = solve_ivp(make_rhs(cruise), (0.0, T_END), y, method="RK45", rtol=RTOL, atol=ATOL, events=sensor)
+    nfev += sol.nfev
+    t_detect = sol.t[-1]
+    y = sol.y[:, -1]
+    t_brake = t_detect + dead_time
+    t_stop = t_brake + V_MAX / A_BRAKE
+    x_b = V_MAX * t_brake
+    x_s = x_b + V_MAX**2 / (2 * A_BRAKE)
+    braking = lambda t: (x_b + V_MAX * (t - t_brake) - 0.5 * A_BRAKE * (t - t_brake) ** 2, V_MAX - A_BRAKE * (t - t_brake))
+    stopped = lambda t: (x_s, 0.0)
+    # Segments 2-4: cruising until the brake, braking until the stop, standing until t_end.
+    for (a, b, robot) in [(t_detect, t_brake, cruise), (t_brake, t_stop, braking), (t_stop, T_END, stopped)]:
+        a, b = min(a, T_END), min(b, T_END)
+        if b <= a:
+            continue
+        sol = solve_ivp(make_rhs(robot), (a, b), y, method="RK45", rtol=RTOL, atol=ATOL)
+        nfev += sol.nfev
+        y = sol.y[:, -1]
+    return t_detect, y, nfev, -s0 + GAP
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--dead-time", type=float, default=0.070)
+    args = ap.parse_args()
+    run(args.dead_time)  # warm up
+    times = []
+    for _ in range(args.runs):
+        t0 = time.perf_counter()
+        t_detect, y, nfev, x_p0 = run(args.dead_time)
+        times.append(time.perf_counter() - t0)
+    times.sort()
+    print(f"scipy solve_ivp RK45, rtol {RTOL:g}, atol {ATOL:g}, hydraulic paper scene, dead time {args.dead_time:g} s")
+    print(f"time per run (median of {args.runs}): {times[len(times) // 2] * 1e3:.1f} ms")
+    print(f"rhs evaluations: {nfev}")
+    print(f"t_detect: {t_detect:.9f} s")
+    print(f"object final velocity: {y[3]:.9f} m/s")
+    print(f"object travel: {y[2] - x_p0:.9f} m")
+
+
+if __name__ == "__main__":
+    main()
