@@ -193,7 +193,10 @@ where
             )))
             .map_err(err)?;
     } else {
-        for c in &panel.curves {
+        for (k, c) in panel.curves.iter().enumerate() {
+            // The first curve is drawn wider, so a curve lying on it (rigid module: tool on
+            // flange) still shows both.
+            let width = if k == 0 && panel.curves.len() > 1 { 4 } else { 2 };
             // Break the line where the value is absent (NaN).
             let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             for p in pts {
@@ -210,7 +213,7 @@ where
             }
             for seg in segments.into_iter().filter(|s| !s.is_empty()) {
                 chart
-                    .draw_series(LineSeries::new(seg, c.color.stroke_width(2)))
+                    .draw_series(LineSeries::new(seg, c.color.stroke_width(width)))
                     .map_err(err)?;
             }
             legend.push((c.label.to_string(), c.color, false));
