@@ -397,3 +397,62 @@ fn robot_impulse_is_the_integral_of_f_r() {
     }
 }
 
+
+#[test]
+fn fixed_step_methods_agree_with_dp5() {
+    let base = paper("paper-hydraulic-dt70");
+    let reference = run(&tight(base.clone())).summary;
+    let rk4 = run(&with(base.clone(), &[("solver.method", "rk4"), ("solver.fixed_step", "2e-6")])).summary;
+    let v = reference.object_final_velocity.unwrap();
+    assert!(close(rk4.object_final_velocity.unwrap(), v, 1e-6, 0.0), "{:?}", rk4.object_final_velocity);
+    assert!(close(rk4.peak_robot_force, reference.peak_robot_force, 1e-5, 0.0));
+    let euler = run(&with(base, &[("solver.method", "euler"), ("solver.fixed_step", "1e-6")])).summary;
+    assert!(close(euler.object_final_velocity.unwrap(), v, 1e-2, 0.0), "{:?}", euler.object_final_velocity);
+}
+
+#[test]
+fn solver_failures_are_statuses_with_messages() {
+    let r = simulate(&with(Scene::default(), &[("solver.max_steps", "10")]), &RunOptions::default());
+    assert_eq!(r.summary.status, RunStatus::MaxSteps);
+    assert!(r.summary.message.contains("10"), "{}", r.summary.message);
+    // the tool resting on its Hertzian stop makes large explicit steps stiff: "stop" ends there
+    let s = with(Scene::default(), &[("object.enabled", "false"), ("solver.stiffness", "stop")]);
+    let r = simulate(&s, &RunOptions::default());
+    assert_eq!(r.summary.status, RunStatus::Stiff);
+    assert!(r.summary.stats.stiff && r.summary.message.contains("stiff"), "{}", r.summary.message);
+    // "warn" records it and goes on; the message of an ok run stays empty
+    let r = simulate(&with(s, &[("solver.stiffness", "warn")]), &RunOptions::default());
+    assert_eq!(r.summary.status, RunStatus::Ok);
+    assert!(r.summary.stats.stiff && r.summary.message.is_empty());
+}
+
+#[test]
+fn event_log_and_trajectory_are_consistent() {
+    let r = run_traj(&paper("paper-hydraulic-dt70"), 1e-3);
+    let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(
+        names,
+        ["object_contact_begin", "forward_stop_end", "sensor", "brake", "object_contact_end", "forward_stop_begin", "robot_stopped"]
+    );
+    assert!(r.events.windows(2).all(|w| w[0].t <= w[1].t));
+    let sensor = &r.events[2];
+    assert!((sensor.point.s - 1.5e-3).abs() < 1e-12);
+    let brake = &r.events[3];
+    assert!(close(brake.t, sensor.t + 0.070, 1e-14, 0.0));
+    assert_eq!(r.summary.t_brake, Some(brake.t));
+    let stop = &r.events[6];
+    assert!(close(stop.t, brake.t + 0.1, 1e-14, 0.0) && stop.point.v_r == 0.0);
+    let pts = &r.trajectory.as_ref().unwrap().points;
+    assert!(pts.windows(2).all(|w| w[0].t <= w[1].t));
+    assert_eq!(pts.first().unwrap().t, 0.0);
+    assert_eq!(pts.last().unwrap().t, 0.3);
+    // every uniform sample is there
+    for k in 0..300 {
+        let t = k as f64 * 1e-3;
+        assert!(pts.iter().any(|p| (p.t - t).abs() < 1e-12), "sample {t}");
+    }
+    // quantities a scene does not have are NaN
+    let r = run_traj(&with(paper("paper-rigid"), &[]), 1e-2);
+    assert!(r.trajectory.unwrap().points.iter().all(|p| p.p1.is_nan()));
+    assert_eq!(r.summary.max_gas_pressure, None);
+}
