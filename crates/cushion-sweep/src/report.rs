@@ -1,0 +1,377 @@
+//! The small report written next to a sweep's summary: SVG charts read at a glance.
+//!
+//! - `report-speed-force.svg` (when `robot.dead_time` is an axis): object final speed and peak
+//!   robot force |F_r| against dead time, one colour per module. Where the sweep varies other
+//!   keys too, each dead-time group (the exact values when there are at most 25, else 20 equal
+//!   bins) shows the median as a line with markers and the range (min to max) as a bar.
+//! - `report-heatmap.svg` (when `hydraulic.gas_pressure` and `hydraulic.orifice_radius` are
+//!   axes): hydraulic runs only, gas pressure (log) against orifice radius; each cell shows the
+//!   worst case (largest) |F_r| and object final speed over the runs in that cell (whatever
+//!   else varies: dead time, object mass). The cells are the axis values when there are at most
+//!   30 of each, else 16 x 12 bins.
+//!
+//! Only runs with status `ok` are drawn; the caption says how many were left out.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
+use plotters::prelude::*;
+
+use crate::runner::read_parquet;
+
+pub const SPEED_FORCE_SVG: &str = "report-speed-force.svg";
+pub const HEATMAP_SVG: &str = "report-heatmap.svg";
+
+const DEAD_TIME: &str = "robot.dead_time";
+const GAS: &str = "hydraulic.gas_pressure";
+const ORIFICE: &str = "hydraulic.orifice_radius";
+
+fn module_color(m: &str) -> RGBColor {
+    match m {
+        "hydraulic" => RGBColor(31, 119, 180),
+        "bistable" => RGBColor(255, 127, 14),
+        "rigid" => RGBColor(110, 110, 110),
+        _ => RGBColor(44, 160, 44),
+    }
+}
+
+#[derive(Default)]
+struct Rows {
+    module: Vec<String>,
+    dead_time: Vec<f64>,
+    gas: Vec<f64>,
+    orifice: Vec<f64>,
+    speed: Vec<f64>,
+    force: Vec<f64>,
+    left_out: usize,
+    total: usize,
+}
+
+fn f64_col(b: &RecordBatch, name: &str) -> Option<Float64Array> {
+    b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<Float64Array>().cloned())
+}
+
+fn str_col(b: &RecordBatch, name: &str) -> Option<StringArray> {
+    b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<StringArray>().cloned())
+}
+
+fn load(dir: &Path) -> Result<(Rows, bool, bool), String> {
+    let base_module = std::fs::read(dir.join("provenance.json"))
+        .ok()
+        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+        .and_then(|p| p["base_scene"]["module"].as_str().map(|s| s.to_string()))
+        .unwrap_or_else(|| "hydraulic".to_string());
+    let mut rows = Rows::default();
+    let (mut has_dt, mut has_map) = (false, false);
+    for b in read_parquet(&dir.join("summary.parquet")).map_err(|e| e.to_string())? {
+        let b = b.map_err(|e| e.to_string())?;
+        let status = str_col(&b, "status").ok_or("no status column")?;
+        let module = str_col(&b, "module");
+        let dt = f64_col(&b, DEAD_TIME);
+        let gas = f64_col(&b, GAS);
+        let ori = f64_col(&b, ORIFICE);
+        has_dt = dt.is_some();
+        has_map = gas.is_some() && ori.is_some();
+        let speed = f64_col(&b, "object_final_velocity").ok_or("no object_final_velocity")?;
+        let force = f64_col(&b, "peak_robot_force").ok_or("no peak_robot_force")?;
+        for i in 0..b.num_rows() {
+            rows.total += 1;
+            if status.value(i) != "ok" || force.is_null(i) {
+                rows.left_out += 1;
+                continue;
+            }
+            rows.module.push(module.as_ref().map(|m| m.value(i).to_string()).unwrap_or_else(|| base_module.clone()));
+            rows.dead_time.push(dt.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
+            rows.gas.push(gas.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
+            rows.orifice.push(ori.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
+            rows.speed.push(if speed.is_null(i) { f64::NAN } else { speed.value(i).abs() });
+            rows.force.push(force.value(i).abs());
+        }
+    }
+    Ok((rows, has_dt, has_map))
+}
+
+/// Write the report charts that the sweep's axes allow; returns the files written.
+pub fn write_report(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
+    let (rows, has_dt, has_map) = load(dir)?;
+    let mut written = Vec::new();
+    for f in [SPEED_FORCE_SVG, HEATMAP_SVG] {
+        let _ = std::fs::remove_file(dir.join(f));
+    }
+    if has_dt && !rows.force.is_empty() {
+        let p = dir.join(SPEED_FORCE_SVG);
+        speed_force(&p, &rows).map_err(|e| format!("{}: {e}", p.display()))?;
+        written.push(p);
+    }
+    if has_map && rows.module.iter().any(|m| m == "hydraulic") {
+        let p = dir.join(HEATMAP_SVG);
+        heatmap(&p, &rows).map_err(|e| format!("{}: {e}", p.display()))?;
+        written.push(p);
+    }
+    Ok(written)
+}
+
+/// Group keys: the exact values when few, else equal bins. Returns (centre of each group, group
+/// index of each value).
+fn groups(values: &[f64], max_exact: usize, bins: usize, log: bool) -> (Vec<f64>, Vec<usize>) {
+    let mut distinct: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
+    distinct.sort_by(|a, b| a.total_cmp(b));
+    distinct.dedup();
+    if distinct.len() <= max_exact {
+        let idx = values
+            .iter()
+            .map(|v| distinct.binary_search_by(|d| d.total_cmp(v)).unwrap_or(0))
+            .collect();
+        return (distinct, idx);
+    }
+    let tr = |v: f64| if log { v.ln() } else { v };
+    let (lo, hi) = (tr(distinct[0]), tr(*distinct.last().expect("non-empty")));
+    let w = (hi - lo) / bins as f64;
+    let centres = (0..bins)
+        .map(|i| {
+            let c = lo + (i as f64 + 0.5) * w;
+            if log { c.exp() } else { c }
+        })
+        .collect();
+    let idx = values
+        .iter()
+        .map(|v| (((tr(*v) - lo) / w) as usize).min(bins - 1))
+        .collect();
+    (centres, idx)
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}
+
+type Draw<E> = Result<(), DrawingAreaErrorKind<E>>;
+
+fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
+    let root = SVGBackend::new(path, (1200, 520)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let n_ok = rows.force.len();
+    let title = format!(
+        "Object final speed and peak robot force against dead time ({n_ok} runs{})",
+        if rows.left_out > 0 { format!(", {} failed runs left out", rows.left_out) } else { String::new() }
+    );
+    let (top, body) = root.split_vertically(50);
+    top.titled(&title, ("sans-serif", 24))?;
+    let (left, right) = body.split_horizontally(600);
+    let (centres, gi) = groups(&rows.dead_time, 25, 20, false);
+    let mut modules: Vec<String> = rows.module.clone();
+    modules.sort();
+    modules.dedup();
+    let several = centres.len() < rows.force.len() / modules.len().max(1);
+    for (area, values, ylabel, caption) in [
+        (&left, &rows.speed, "|object final velocity| [m/s]", "Object final speed"),
+        (&right, &rows.force, "|peak robot force| [N]", "Peak robot force"),
+    ] {
+        // Per module and group: (min, median, max).
+        let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
+        for m in &modules {
+            let mut per: Vec<Vec<f64>> = vec![Vec::new(); centres.len()];
+            for i in 0..values.len() {
+                if &rows.module[i] == m && values[i].is_finite() && rows.dead_time[i].is_finite() {
+                    per[gi[i]].push(values[i]);
+                }
+            }
+            let s = per
+                .iter_mut()
+                .enumerate()
+                .filter(|(_, v)| !v.is_empty())
+                .map(|(g, v)| {
+                    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+                    let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                    (centres[g] * 1e3, lo, median(v), hi)
+                })
+                .collect();
+            stats.insert(m.as_str(), s);
+        }
+        let ymax = stats
+            .values()
+            .flatten()
+            .map(|s| s.3)
+            .fold(0.0f64, f64::max)
+            .max(1e-9)
+            * 1.1;
+        let (x0, x1) = (
+            centres.first().copied().unwrap_or(0.0) * 1e3,
+            centres.last().copied().unwrap_or(0.1) * 1e3,
+        );
+        let pad = ((x1 - x0) * 0.05).max(1.0);
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                if several { format!("{caption} (median, bar = min..max)") } else { caption.to_string() },
+                ("sans-serif", 20),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d((x0 - pad)..(x1 + pad), 0.0..ymax)?;
+        chart
+            .configure_mesh()
+            .x_desc("dead time [ms]")
+            .y_desc(ylabel)
+            .label_style(("sans-serif", 15))
+            .axis_desc_style(("sans-serif", 16))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()?;
+        for (m, s) in &stats {
+            let color = module_color(m);
+            if several {
+                chart.draw_series(s.iter().map(|(x, lo, _, hi)| {
+                    PathElement::new(vec![(*x, *lo), (*x, *hi)], color.mix(0.45).stroke_width(3))
+                }))?;
+            }
+            chart
+                .draw_series(LineSeries::new(s.iter().map(|(x, _, md, _)| (*x, *md)), color.stroke_width(2)))?
+                .label(m.to_string())
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3)));
+            chart.draw_series(s.iter().map(|(x, _, md, _)| Circle::new((*x, *md), 4, color.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(RGBColor(180, 180, 180))
+            .label_font(("sans-serif", 15))
+            .draw()?;
+    }
+    root.present()?;
+    Ok(())
+}
+
+/// A perceptually ordered colour map (viridis, 5 stops, linear in between), `u` in [0, 1].
+fn viridis(u: f64) -> RGBColor {
+    const STOPS: [(f64, f64, f64); 5] = [
+        (68.0, 1.0, 84.0),
+        (59.0, 82.0, 139.0),
+        (33.0, 145.0, 140.0),
+        (94.0, 201.0, 98.0),
+        (253.0, 231.0, 37.0),
+    ];
+    let u = u.clamp(0.0, 1.0) * 4.0;
+    let i = (u as usize).min(3);
+    let f = u - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    let mix = |x: f64, y: f64| (x + (y - x) * f).round() as u8;
+    RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
+}
+
+fn heatmap(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
+    let hyd: Vec<usize> = (0..rows.module.len()).filter(|i| rows.module[*i] == "hydraulic").collect();
+    let gas: Vec<f64> = hyd.iter().map(|i| rows.gas[*i]).collect();
+    let ori: Vec<f64> = hyd.iter().map(|i| rows.orifice[*i]).collect();
+    let (gc, gi) = groups(&gas, 30, 16, true);
+    let (oc, oi) = groups(&ori, 30, 12, false);
+    let root = SVGBackend::new(path, (1300, 580)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let (top, body) = root.split_vertically(50);
+    top.titled(
+        &format!(
+            "Hydraulic module: worst case over the other axes, per gas pressure and orifice radius ({} runs)",
+            hyd.len()
+        ),
+        ("sans-serif", 22),
+    )?;
+    let (left, right) = body.split_horizontally(650);
+    // Cell edges in plot coordinates: log10(pressure) and radius in mm.
+    let edges = |c: &[f64], log: bool| -> Vec<f64> {
+        let t: Vec<f64> = c.iter().map(|v| if log { v.log10() } else { v * 1e3 }).collect();
+        if t.len() == 1 {
+            return vec![t[0] - 0.5, t[0] + 0.5];
+        }
+        let mut e = vec![t[0] - (t[1] - t[0]) / 2.0];
+        for w in t.windows(2) {
+            e.push((w[0] + w[1]) / 2.0);
+        }
+        e.push(t[t.len() - 1] + (t[t.len() - 1] - t[t.len() - 2]) / 2.0);
+        e
+    };
+    let gx = edges(&gc, true);
+    let oy = edges(&oc, false);
+    for (area, metric, label) in [
+        (&left, &rows.force, "max |peak robot force| [N]"),
+        (&right, &rows.speed, "max |object final velocity| [m/s]"),
+    ] {
+        let mut cell = vec![vec![f64::NAN; oc.len()]; gc.len()];
+        for (j, i) in hyd.iter().enumerate() {
+            let v = metric[*i];
+            if v.is_finite() {
+                let c = &mut cell[gi[j]][oi[j]];
+                *c = if c.is_nan() { v } else { c.max(v) };
+            }
+        }
+        let vals: Vec<f64> = cell.iter().flatten().copied().filter(|v| v.is_finite()).collect();
+        let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let span = if hi > lo { hi - lo } else { 1.0 };
+        let (plot, bar) = area.split_horizontally(550);
+        let mut chart = ChartBuilder::on(&plot)
+            .caption(label, ("sans-serif", 19))
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(60)
+            .build_cartesian_2d(gx[0]..gx[gx.len() - 1], oy[0]..oy[oy.len() - 1])?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("gas pressure p10 [Pa] (log)")
+            .y_desc("orifice radius [mm]")
+            .x_label_formatter(&|v| {
+                let p = 10f64.powf(*v);
+                if p >= 1e3 { format!("{:.0}k", p / 1e3) } else { format!("{p:.0}") }
+            })
+            .y_label_formatter(&|v| format!("{v:.1}"))
+            .label_style(("sans-serif", 14))
+            .axis_desc_style(("sans-serif", 15))
+            .draw()?;
+        let few = gc.len() * oc.len() <= 64;
+        for a in 0..gc.len() {
+            for b in 0..oc.len() {
+                let v = cell[a][b];
+                let color = if v.is_finite() { viridis((v - lo) / span) } else { RGBColor(225, 225, 225) };
+                chart.draw_series(std::iter::once(Rectangle::new(
+                    [(gx[a], oy[b]), (gx[a + 1], oy[b + 1])],
+                    color.filled(),
+                )))?;
+                if few && v.is_finite() {
+                    let u = (v - lo) / span;
+                    let tc = if u > 0.6 { BLACK } else { WHITE };
+                    chart.draw_series(std::iter::once(Text::new(
+                        format!("{v:.3}"),
+                        ((gx[a] + gx[a + 1]) / 2.0 - (gx[a + 1] - gx[a]) * 0.3, (oy[b] + oy[b + 1]) / 2.0),
+                        ("sans-serif", 12).into_font().color(&tc),
+                    )))?;
+                }
+            }
+        }
+        // Colour bar.
+        if vals.is_empty() {
+            continue;
+        }
+        let mut cb = ChartBuilder::on(&bar)
+            .margin_top(50)
+            .margin_bottom(60)
+            .margin_right(5)
+            .y_label_area_size(50)
+            .build_cartesian_2d(0.0..1.0, lo..(lo + span))?;
+        cb.configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_label_formatter(&|v| format!("{v:.3}"))
+            .label_style(("sans-serif", 12))
+            .draw()?;
+        let steps = 64;
+        cb.draw_series((0..steps).map(|k| {
+            let a = lo + span * k as f64 / steps as f64;
+            let b = lo + span * (k + 1) as f64 / steps as f64;
+            Rectangle::new([(0.0, a), (1.0, b)], viridis(k as f64 / (steps - 1) as f64).filled())
+        }))?;
+    }
+    root.present()?;
+    Ok(())
+}

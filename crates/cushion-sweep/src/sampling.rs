@@ -1,0 +1,196 @@
+//! From run number to axis values: grid, zip, Latin hypercube (seeded ChaCha8) and Sobol
+//! (Owen-scrambled, seeded, `sobol_burley`). Every point is a pure function of the sweep file
+//! and the run number, so any subset of runs (a chunk, a shard, a resumed remainder) gets the
+//! same values as a full run, on any number of threads.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use toml::Value;
+
+use crate::sweep_file::{Axis, AxisValues, Mode, SweepFile};
+use cushion_model::Scene;
+
+/// The sampling plan of a sweep file.
+#[derive(Clone, Debug)]
+pub struct Design {
+    mode: Mode,
+    axes: Vec<Axis>,
+    n_runs: u64,
+    seed: u64,
+    /// Latin hypercube: for each axis, the stratum of each run (a permutation of `0..n`).
+    strata: Vec<Vec<u32>>,
+}
+
+/// A uniform number in [0, 1) with 53 random bits.
+fn unit(bits: u64) -> f64 {
+    (bits >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+impl Design {
+    pub fn new(sweep: &SweepFile) -> Result<Design, String> {
+        let n_runs = sweep.n_runs()?;
+        let mut strata = Vec::new();
+        if sweep.mode == Mode::Lhs {
+            if n_runs > u32::MAX as u64 {
+                return Err(format!("lhs takes at most {} samples", u32::MAX));
+            }
+            for d in 0..sweep.axes.len() {
+                // Fisher-Yates with its own stream per axis.
+                let mut rng = ChaCha8Rng::seed_from_u64(sweep.seed);
+                rng.set_stream(2 * d as u64 + 1);
+                let mut perm: Vec<u32> = (0..n_runs as u32).collect();
+                for i in (1..perm.len()).rev() {
+                    let j = (rng.next_u64() % (i as u64 + 1)) as usize;
+                    perm.swap(i, j);
+                }
+                strata.push(perm);
+            }
+        }
+        Ok(Design { mode: sweep.mode, axes: sweep.axes.clone(), n_runs, seed: sweep.seed, strata })
+    }
+
+    pub fn n_runs(&self) -> u64 {
+        self.n_runs
+    }
+
+    pub fn axes(&self) -> &[Axis] {
+        &self.axes
+    }
+
+    /// The unit-cube coordinate of `run` on axis `d` (lhs and sobol).
+    fn unit_coord(&self, run: u64, d: usize) -> f64 {
+        match self.mode {
+            Mode::Lhs => {
+                // Jitter inside the stratum: one ChaCha8 word pair per (axis, run).
+                let mut rng = ChaCha8Rng::seed_from_u64(self.seed);
+                rng.set_stream(2 * d as u64 + 2);
+                rng.set_word_pos(2 * run as u128);
+                let u = unit(rng.next_u64());
+                let u = (self.strata[d][run as usize] as f64 + u) / self.n_runs as f64;
+                u.min(1.0 - f64::EPSILON / 2.0)
+            }
+            Mode::Sobol => sobol_burley::sample(run as u32, d as u32, self.seed as u32) as f64,
+            Mode::Grid | Mode::Zip => unreachable!("grid and zip have no unit coordinates"),
+        }
+    }
+
+    /// The axis values of one run, one per axis, in axis order.
+    pub fn point(&self, run: u64) -> Vec<Value> {
+        assert!(run < self.n_runs, "run {run} out of 0..{}", self.n_runs);
+        match self.mode {
+            Mode::Grid => {
+                let mut rest = run;
+                let mut out = vec![Value::Boolean(false); self.axes.len()];
+                for (d, a) in self.axes.iter().enumerate().rev() {
+                    let AxisValues::List(vals) = &a.values else { unreachable!() };
+                    let k = vals.len() as u64;
+                    out[d] = vals[(rest % k) as usize].clone();
+                    rest /= k;
+                }
+                out
+            }
+            Mode::Zip => self
+                .axes
+                .iter()
+                .map(|a| {
+                    let AxisValues::List(vals) = &a.values else { unreachable!() };
+                    vals[run as usize].clone()
+                })
+                .collect(),
+            Mode::Lhs | Mode::Sobol => self
+                .axes
+                .iter()
+                .enumerate()
+                .map(|(d, a)| {
+                    let u = self.unit_coord(run, d);
+                    match &a.values {
+                        AxisValues::List(vals) => {
+                            let k = vals.len();
+                            vals[((u * k as f64) as usize).min(k - 1)].clone()
+                        }
+                        AxisValues::Range { low, high, log } => {
+                            let x = if *log {
+                                (low.ln() + u * (high.ln() - low.ln())).exp()
+                            } else {
+                                low + u * (high - low)
+                            };
+                            Value::Float(x.clamp(*low, *high))
+                        }
+                    }
+                })
+                .collect(),
+        }
+    }
+
+    /// The scene of one run: the base scene with the run's axis values set (not validated).
+    pub fn scene(&self, base: &Scene, point: &[Value]) -> Result<Scene, String> {
+        let mut scene = base.clone();
+        for (a, v) in self.axes.iter().zip(point) {
+            scene.set(&a.key, v).map_err(|e| e.to_string())?;
+        }
+        Ok(scene)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::path::Path;
+
+    fn design(text: &str) -> Design {
+        let s = SweepFile::from_str_at(text, Path::new("/x/t.toml")).unwrap();
+        Design::new(&s).unwrap()
+    }
+
+    #[test]
+    fn grid_is_row_major() {
+        let d = design(
+            "[[axis]]\nkey = \"robot.dead_time\"\nvalues = [1, 2]\n[[axis]]\nkey = \"object.mass\"\nvalues = [10, 20, 30]\n",
+        );
+        assert_eq!(d.n_runs(), 6);
+        let pts: Vec<_> = (0..6).map(|r| d.point(r)).collect();
+        assert_eq!(pts[0], vec![Value::Integer(1), Value::Integer(10)]);
+        assert_eq!(pts[1], vec![Value::Integer(1), Value::Integer(20)]);
+        assert_eq!(pts[5], vec![Value::Integer(2), Value::Integer(30)]);
+    }
+
+    #[test]
+    fn lhs_is_stratified_and_seeded() {
+        let text = "[sampling]\nmode = \"lhs\"\nsamples = 50\nseed = 3\n[[axis]]\nkey = \"object.mass\"\nrange = [0.0, 1.0]\n[[axis]]\nkey = \"hydraulic.gas_pressure\"\nrange = [300, 1e5]\nscale = \"log\"\n[[axis]]\nkey = \"module\"\nvalues = [\"hydraulic\", \"bistable\"]\n";
+        let d = design(text);
+        let d2 = design(text);
+        let mut strata = vec![false; 50];
+        let mut hydraulic = 0;
+        for r in 0..50 {
+            let p = d.point(r);
+            assert_eq!(p, d2.point(r));
+            let m = p[0].as_float().unwrap();
+            assert!((0.0..1.0).contains(&m));
+            strata[(m * 50.0) as usize] = true;
+            let g = p[1].as_float().unwrap();
+            assert!((300.0..=1e5).contains(&g));
+            if p[2].as_str() == Some("hydraulic") {
+                hydraulic += 1;
+            }
+        }
+        assert!(strata.iter().all(|s| *s), "one sample per stratum");
+        assert_eq!(hydraulic, 25, "categorical values drawn evenly");
+        let other = design(&text.replace("seed = 3", "seed = 4"));
+        assert_ne!(other.point(0), d.point(0));
+    }
+
+    #[test]
+    fn sobol_in_range_and_balanced() {
+        let d = design("[sampling]\nmode = \"sobol\"\nsamples = 64\nseed = 1\n[[axis]]\nkey = \"object.mass\"\nrange = [0.05, 1.0]\n[[axis]]\nkey = \"module\"\nvalues = [\"hydraulic\", \"bistable\"]\n");
+        let mut h = 0;
+        for r in 0..64 {
+            let p = d.point(r);
+            let m = p[0].as_float().unwrap();
+            assert!((0.05..=1.0).contains(&m));
+            if p[1].as_str() == Some("hydraulic") {
+                h += 1;
+            }
+        }
+        assert_eq!(h, 32);
+    }
+}

@@ -1,0 +1,698 @@
+//! Sweep files (TOML): what to vary, how to sample it and what to record.
+//!
+//! ```toml
+//! name = "design-space"                   # optional; default: the file's stem
+//! scene = "scenes/paper-hydraulic.toml"   # optional base scene, relative to this file
+//! [set]                                   # optional overrides of the base scene (SPEC section 7 keys)
+//! "solver.rtol" = 1e-6
+//! [sampling]
+//! mode = "sobol"                          # grid (default) | zip | lhs | sobol
+//! samples = 4096                          # lhs and sobol only
+//! seed = 7                                # lhs and sobol only (default 0)
+//! [[axis]]
+//! key = "robot.dead_time"
+//! linspace = [0.0, 0.1, 11]               # or values = [...], logspace = [start, stop, n], range = [low, high]
+//! [output]
+//! record = "none"                         # "none" | "all" | [run numbers]: trajectories to MCAP
+//! chunk_size = 256                        # runs per chunk (the unit of progress saved on disk)
+//! invalid_runs = "fail"                   # "fail": a run whose scene is rejected fails the file
+//!                                         # before any run; "row": it becomes a row with status invalid
+//! sample_interval = 1e-4                  # recorded runs: also sample every 0.1 ms (default: steps and events)
+//! ```
+//!
+//! Axis forms:
+//! - `values = [...]`: numbers, strings (e.g. `module`) or booleans, all of one kind.
+//! - `linspace = [start, stop, n]`: `n` evenly spaced values, both ends included (`n = 1`: `start`).
+//! - `logspace = [start, stop, n]`: `n` values evenly spaced in log, both **endpoints** given as
+//!   values (not exponents): `logspace = [300, 1e5, 8]` runs 300 Pa ... 100 kPa. Both > 0.
+//! - `range = [low, high]` (lhs and sobol only), with `scale = "linear"` (default) or `"log"`.
+//!
+//! Modes: `grid` is the Cartesian product, first axis slowest (run 0 takes every axis's first
+//! value); `zip` takes the i-th value of every axis for run i (all axes the same length); `lhs`
+//! (Latin hypercube, seeded ChaCha8) and `sobol` (Owen-scrambled Sobol, seeded) draw `samples`
+//! points in the unit cube, one dimension per axis. There, a `range` axis maps its coordinate
+//! onto `[low, high]` (log-uniformly with `scale = "log"`), and a list axis (`values`,
+//! `linspace`, `logspace`, e.g. categorical `module`) takes value `floor(u * k)` of its `k`
+//! values, so every value is drawn evenly (exactly evenly with lhs when `k` divides `samples`).
+//!
+//! Run numbers are 0-based. Every error names the key (and the axis number), and TOML syntax
+//! errors name the line.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use cushion_model::Scene;
+use toml::Value;
+
+/// How the runs are drawn from the axes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    Grid,
+    Zip,
+    Lhs,
+    Sobol,
+}
+
+impl Mode {
+    pub fn name(self) -> &'static str {
+        match self {
+            Mode::Grid => "grid",
+            Mode::Zip => "zip",
+            Mode::Lhs => "lhs",
+            Mode::Sobol => "sobol",
+        }
+    }
+}
+
+/// One axis's values.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AxisValues {
+    /// A finite list (`values`, `linspace`, `logspace`).
+    List(Vec<Value>),
+    /// A continuous range (lhs and sobol only).
+    Range { low: f64, high: f64, log: bool },
+}
+
+/// The kind of value an axis puts in its summary column.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AxisKind {
+    Number,
+    Text,
+    Bool,
+}
+
+/// One `[[axis]]`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    pub key: String,
+    pub values: AxisValues,
+    pub kind: AxisKind,
+}
+
+/// Which runs record their trajectories.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Record {
+    None,
+    All,
+    Runs(BTreeSet<u64>),
+}
+
+impl Record {
+    pub fn wants(&self, run: u64) -> bool {
+        match self {
+            Record::None => false,
+            Record::All => true,
+            Record::Runs(r) => r.contains(&run),
+        }
+    }
+    pub fn any(&self) -> bool {
+        match self {
+            Record::None => false,
+            Record::All => true,
+            Record::Runs(r) => !r.is_empty(),
+        }
+    }
+}
+
+/// What to do with a run whose scene the model rejects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InvalidRuns {
+    /// The sweep file is invalid: fail before any run (default).
+    Fail,
+    /// The run becomes a row with status `invalid` and the message.
+    Row,
+}
+
+/// Default runs per chunk.
+pub const DEFAULT_CHUNK_SIZE: usize = 256;
+/// Sobol points available from `sobol_burley`.
+pub const SOBOL_MAX_SAMPLES: u64 = 1 << 16;
+/// The largest sweep accepted (a guard against a typo in a grid).
+pub const MAX_RUNS: u64 = 1 << 32;
+
+/// A parsed, checked sweep file.
+#[derive(Clone, Debug)]
+pub struct SweepFile {
+    pub name: String,
+    /// Where the file was read from.
+    pub path: PathBuf,
+    /// The file's text, as read (copied next to the results).
+    pub text: String,
+    /// The base scene with `[set]` applied.
+    pub base: Scene,
+    /// `[set]` overrides, in file order, flattened to `section.name` keys.
+    pub set: Vec<(String, Value)>,
+    pub mode: Mode,
+    /// lhs and sobol only.
+    pub samples: u64,
+    pub seed: u64,
+    pub axes: Vec<Axis>,
+    pub record: Record,
+    pub chunk_size: usize,
+    pub invalid_runs: InvalidRuns,
+    /// Recorded runs: also sample the dense output every this many seconds.
+    pub sample_interval: Option<f64>,
+}
+
+fn type_name(v: &Value) -> &'static str {
+    v.type_str()
+}
+
+fn as_number(v: &Value) -> Option<f64> {
+    match v {
+        Value::Float(f) => Some(*f),
+        Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+fn check_keys(table: &toml::Table, allowed: &[&str], where_: &str) -> Result<(), String> {
+    for k in table.keys() {
+        if !allowed.contains(&k.as_str()) {
+            return Err(format!(
+                "unknown key `{k}` in {where_} (allowed: {})",
+                allowed.join(", ")
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Flatten `{solver = {rtol = 1e-6}}` (unquoted dotted keys) into `solver.rtol`.
+fn flatten(prefix: &str, t: &toml::Table, out: &mut Vec<(String, Value)>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+        match v {
+            Value::Table(inner) => flatten(&key, inner, out),
+            _ => out.push((key, v.clone())),
+        }
+    }
+}
+
+/// `(start, stop, n)` of a linspace/logspace array.
+fn spaced(key: &str, form: &str, v: &Value) -> Result<(f64, f64, usize), String> {
+    let arr = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| format!("{key}: `{form}` must be [start, stop, n], got {v}"))?;
+    let start = as_number(&arr[0])
+        .ok_or_else(|| format!("{key}: `{form}` start must be a number, got {}", arr[0]))?;
+    let stop = as_number(&arr[1])
+        .ok_or_else(|| format!("{key}: `{form}` stop must be a number, got {}", arr[1]))?;
+    let n = match &arr[2] {
+        Value::Integer(n) => *n,
+        other => return Err(format!("{key}: `{form}` n must be an integer >= 1, got {other}")),
+    };
+    if n < 1 {
+        return Err(format!("{key}: `{form}` n must be an integer >= 1, got {n}"));
+    }
+    if n as u64 > MAX_RUNS {
+        return Err(format!("{key}: `{form}` n = {n} is too large (at most {MAX_RUNS})"));
+    }
+    if !start.is_finite() || !stop.is_finite() {
+        return Err(format!("{key}: `{form}` start and stop must be finite, got {v}"));
+    }
+    Ok((start, stop, n as usize))
+}
+
+/// `n` evenly spaced values from `start` to `stop`, both included; exact at the ends.
+pub fn linspace(start: f64, stop: f64, n: usize) -> Vec<f64> {
+    if n == 1 {
+        return vec![start];
+    }
+    (0..n)
+        .map(|i| {
+            if i == n - 1 {
+                stop
+            } else {
+                start + (stop - start) * (i as f64) / ((n - 1) as f64)
+            }
+        })
+        .collect()
+}
+
+/// `n` values evenly spaced in log from `start` to `stop` (endpoints, both > 0, both included).
+pub fn logspace(start: f64, stop: f64, n: usize) -> Vec<f64> {
+    let (a, b) = (start.ln(), stop.ln());
+    linspace(a, b, n)
+        .into_iter()
+        .enumerate()
+        .map(|(i, x)| if i == 0 { start } else if i == n - 1 { stop } else { x.exp() })
+        .collect()
+}
+
+fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
+    let t = v
+        .as_table()
+        .ok_or_else(|| format!("[[axis]] #{}: must be a table with `key` and values", i + 1))?;
+    let key = match t.get("key") {
+        Some(Value::String(k)) => k.clone(),
+        Some(other) => {
+            return Err(format!("[[axis]] #{}: `key` must be a string, got {other}", i + 1))
+        }
+        None => return Err(format!("[[axis]] #{}: missing `key`", i + 1)),
+    };
+    let label = format!("[[axis]] #{} (`{key}`)", i + 1);
+    check_keys(
+        t,
+        &["key", "values", "linspace", "logspace", "range", "scale"],
+        &label,
+    )?;
+    if !Scene::keys().contains(&key.as_str()) {
+        return Err(format!(
+            "{label}: unknown scene key `{key}` (allowed: {})",
+            Scene::keys().join(", ")
+        ));
+    }
+    let forms: Vec<&str> = ["values", "linspace", "logspace", "range"]
+        .into_iter()
+        .filter(|f| t.contains_key(*f))
+        .collect();
+    if forms.len() != 1 {
+        return Err(format!(
+            "{label}: give exactly one of `values`, `linspace`, `logspace`, `range` (found {})",
+            if forms.is_empty() { "none".to_string() } else { forms.join(", ") }
+        ));
+    }
+    let form = forms[0];
+    if t.contains_key("scale") && form != "range" {
+        return Err(format!("{label}: `scale` goes with `range` only"));
+    }
+    let values = match form {
+        "values" => {
+            let arr = t["values"]
+                .as_array()
+                .ok_or_else(|| format!("{label}: `values` must be an array"))?;
+            if arr.is_empty() {
+                return Err(format!("{label}: `values` is empty"));
+            }
+            AxisValues::List(arr.clone())
+        }
+        "linspace" => {
+            let (a, b, n) = spaced(&label, "linspace", &t["linspace"])?;
+            AxisValues::List(linspace(a, b, n).into_iter().map(Value::Float).collect())
+        }
+        "logspace" => {
+            let (a, b, n) = spaced(&label, "logspace", &t["logspace"])?;
+            if a <= 0.0 || b <= 0.0 {
+                return Err(format!(
+                    "{label}: `logspace` takes endpoints (not exponents), both > 0, got [{a}, {b}, {n}]"
+                ));
+            }
+            AxisValues::List(logspace(a, b, n).into_iter().map(Value::Float).collect())
+        }
+        _ => {
+            if matches!(mode, Mode::Grid | Mode::Zip) {
+                return Err(format!(
+                    "{label}: a `range` axis needs sampling mode lhs or sobol (mode is {}); use values, linspace or logspace",
+                    mode.name()
+                ));
+            }
+            let r = &t["range"];
+            let arr = r
+                .as_array()
+                .filter(|a| a.len() == 2)
+                .ok_or_else(|| format!("{label}: `range` must be [low, high], got {r}"))?;
+            let (low, high) = match (as_number(&arr[0]), as_number(&arr[1])) {
+                (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a, b),
+                _ => return Err(format!("{label}: `range` must be two finite numbers, got {r}")),
+            };
+            if low > high {
+                return Err(format!("{label}: `range` low {low} is above high {high}"));
+            }
+            let log = match t.get("scale") {
+                None => false,
+                Some(Value::String(s)) if s == "linear" => false,
+                Some(Value::String(s)) if s == "log" => true,
+                Some(other) => {
+                    return Err(format!(
+                        "{label}: `scale` = {other}: allowed \"linear\" or \"log\""
+                    ))
+                }
+            };
+            if log && low <= 0.0 {
+                return Err(format!("{label}: `scale = \"log\"` needs low > 0, got {low}"));
+            }
+            AxisValues::Range { low, high, log }
+        }
+    };
+    let kind = match &values {
+        AxisValues::Range { .. } => AxisKind::Number,
+        AxisValues::List(vals) => {
+            let kind_of = |v: &Value| match v {
+                Value::Float(_) | Value::Integer(_) => Some(AxisKind::Number),
+                Value::String(_) => Some(AxisKind::Text),
+                Value::Boolean(_) => Some(AxisKind::Bool),
+                _ => None,
+            };
+            let first = kind_of(&vals[0]).ok_or_else(|| {
+                format!("{label}: values must be numbers, strings or booleans, got {}", type_name(&vals[0]))
+            })?;
+            for v in vals {
+                if kind_of(v) != Some(first) {
+                    return Err(format!(
+                        "{label}: values must all be of one kind (numbers, strings or booleans), got {v}"
+                    ));
+                }
+                if let Some(f) = as_number(v) {
+                    if !f.is_finite() {
+                        return Err(format!("{label}: value {v} is not finite"));
+                    }
+                }
+            }
+            first
+        }
+    };
+    Ok(Axis { key, values, kind })
+}
+
+impl SweepFile {
+    /// Read and check a sweep file. The error is the whole message (naming the file, key, line).
+    pub fn from_file(path: &Path) -> Result<SweepFile, String> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        SweepFile::from_str_at(&text, path).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Parse sweep text; `path` locates the base scene (relative to its folder).
+    pub fn from_str_at(text: &str, path: &Path) -> Result<SweepFile, String> {
+        let doc: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+            // toml's message already names line and column.
+            e.to_string().trim_end().to_string()
+        })?;
+        check_keys(&doc, &["name", "scene", "set", "sampling", "axis", "output"], "the sweep file")?;
+
+        let name = match doc.get("name") {
+            None => path
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "sweep".to_string()),
+            Some(Value::String(s)) => s.clone(),
+            Some(other) => return Err(format!("`name` must be a string, got {other}")),
+        };
+        if name.is_empty()
+            || name == "."
+            || name == ".."
+            || name.contains(['/', '\\'])
+            || name.chars().any(|c| c.is_control())
+        {
+            return Err(format!(
+                "`name` = {name:?}: must be a plain folder name (no slashes), it names runs/<name>"
+            ));
+        }
+
+        let mut base = match doc.get("scene") {
+            None => Scene::default(),
+            Some(Value::String(s)) => {
+                let dir = path.parent().unwrap_or(Path::new(""));
+                let scene_path = dir.join(s);
+                Scene::from_file(&scene_path).map_err(|e| format!("`scene` = {s:?}: {e}"))?
+            }
+            Some(other) => return Err(format!("`scene` must be a path string, got {other}")),
+        };
+
+        let mut set = Vec::new();
+        if let Some(v) = doc.get("set") {
+            let t = v.as_table().ok_or("`set` must be a table [set]")?;
+            flatten("", t, &mut set);
+        }
+        for (k, v) in &set {
+            base.set(k, v).map_err(|e| format!("[set] {e}"))?;
+        }
+
+        // [sampling]
+        let empty = toml::Table::new();
+        let sampling = match doc.get("sampling") {
+            None => &empty,
+            Some(Value::Table(t)) => t,
+            Some(_) => return Err("`sampling` must be a table [sampling]".to_string()),
+        };
+        check_keys(sampling, &["mode", "samples", "seed"], "[sampling]")?;
+        let mode = match sampling.get("mode") {
+            None => Mode::Grid,
+            Some(Value::String(s)) => match s.as_str() {
+                "grid" => Mode::Grid,
+                "zip" => Mode::Zip,
+                "lhs" => Mode::Lhs,
+                "sobol" => Mode::Sobol,
+                _ => {
+                    return Err(format!(
+                        "[sampling] mode = {s:?}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\""
+                    ))
+                }
+            },
+            Some(other) => {
+                return Err(format!(
+                    "[sampling] mode = {other}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\""
+                ))
+            }
+        };
+        let random = matches!(mode, Mode::Lhs | Mode::Sobol);
+        let samples = match (sampling.get("samples"), random) {
+            (None, true) => {
+                return Err(format!("[sampling] mode {} needs `samples` (an integer >= 1)", mode.name()))
+            }
+            (None, false) => 0,
+            (Some(_), false) => {
+                return Err(format!(
+                    "[sampling] `samples` is for lhs and sobol only (mode is {}: the axes set the number of runs)",
+                    mode.name()
+                ))
+            }
+            (Some(Value::Integer(n)), true) if *n >= 1 => *n as u64,
+            (Some(other), true) => {
+                return Err(format!("[sampling] samples = {other}: must be an integer >= 1"))
+            }
+        };
+        if mode == Mode::Sobol && samples > SOBOL_MAX_SAMPLES {
+            return Err(format!(
+                "[sampling] samples = {samples}: sobol gives at most {SOBOL_MAX_SAMPLES} points; use lhs for more"
+            ));
+        }
+        if samples > MAX_RUNS {
+            return Err(format!("[sampling] samples = {samples}: at most {MAX_RUNS}"));
+        }
+        let seed = match (sampling.get("seed"), random) {
+            (None, _) => 0,
+            (Some(_), false) => {
+                return Err(format!(
+                    "[sampling] `seed` is for lhs and sobol only (mode is {})",
+                    mode.name()
+                ))
+            }
+            (Some(Value::Integer(n)), true) if *n >= 0 && (*n as u64) <= u32::MAX as u64 => {
+                *n as u64
+            }
+            (Some(other), true) => {
+                return Err(format!(
+                    "[sampling] seed = {other}: must be an integer from 0 to {}",
+                    u32::MAX
+                ))
+            }
+        };
+
+        // [[axis]]
+        let mut axes = Vec::new();
+        match doc.get("axis") {
+            None => {}
+            Some(Value::Array(arr)) => {
+                for (i, v) in arr.iter().enumerate() {
+                    axes.push(parse_axis(i, v, mode)?);
+                }
+            }
+            Some(_) => return Err("`axis` must be an array of tables [[axis]]".to_string()),
+        }
+        let mut seen = BTreeSet::new();
+        for (i, a) in axes.iter().enumerate() {
+            if !seen.insert(a.key.clone()) {
+                return Err(format!("[[axis]] #{} (`{}`): the key has another axis already", i + 1, a.key));
+            }
+            if set.iter().any(|(k, _)| k == &a.key) {
+                return Err(format!(
+                    "[[axis]] #{} (`{}`): the key is also in [set]; keep one",
+                    i + 1,
+                    a.key
+                ));
+            }
+        }
+        if mode == Mode::Zip {
+            if let Some(first) = axes.first() {
+                let n0 = list_len(first);
+                for (i, a) in axes.iter().enumerate() {
+                    if list_len(a) != n0 {
+                        return Err(format!(
+                            "[[axis]] #{} (`{}`): zip needs axes of one length: it has {} values, `{}` has {}",
+                            i + 1,
+                            a.key,
+                            list_len(a),
+                            first.key,
+                            n0
+                        ));
+                    }
+                }
+            }
+        }
+        if mode == Mode::Sobol && axes.len() as u32 > sobol_burley::NUM_DIMENSIONS {
+            return Err(format!("sobol takes at most {} axes", sobol_burley::NUM_DIMENSIONS));
+        }
+
+        // [output]
+        let output = match doc.get("output") {
+            None => &empty,
+            Some(Value::Table(t)) => t,
+            Some(_) => return Err("`output` must be a table [output]".to_string()),
+        };
+        check_keys(output, &["record", "chunk_size", "invalid_runs", "sample_interval"], "[output]")?;
+        let sample_interval = match output.get("sample_interval") {
+            None => None,
+            Some(v) => match as_number(v) {
+                Some(x) if x > 0.0 && x.is_finite() => Some(x),
+                _ => return Err(format!("[output] sample_interval = {v}: must be a number > 0 (seconds)")),
+            },
+        };
+        let chunk_size = match output.get("chunk_size") {
+            None => DEFAULT_CHUNK_SIZE,
+            Some(Value::Integer(n)) if *n >= 1 && *n <= 1 << 20 => *n as usize,
+            Some(other) => {
+                return Err(format!("[output] chunk_size = {other}: must be an integer from 1 to {}", 1 << 20))
+            }
+        };
+        let invalid_runs = match output.get("invalid_runs") {
+            None => InvalidRuns::Fail,
+            Some(Value::String(s)) if s == "fail" => InvalidRuns::Fail,
+            Some(Value::String(s)) if s == "row" => InvalidRuns::Row,
+            Some(other) => {
+                return Err(format!("[output] invalid_runs = {other}: allowed \"fail\" or \"row\""))
+            }
+        };
+
+        let mut sweep = SweepFile {
+            name,
+            path: path.to_path_buf(),
+            text: text.to_string(),
+            base,
+            set,
+            mode,
+            samples,
+            seed,
+            axes,
+            record: Record::None,
+            chunk_size,
+            invalid_runs,
+            sample_interval,
+        };
+        let n_runs = sweep.n_runs()?;
+        sweep.record = match output.get("record") {
+            None => Record::None,
+            Some(Value::String(s)) if s == "none" => Record::None,
+            Some(Value::String(s)) if s == "all" => Record::All,
+            Some(Value::Array(a)) => {
+                let mut runs = BTreeSet::new();
+                for v in a {
+                    match v {
+                        Value::Integer(n) if *n >= 0 && (*n as u64) < n_runs => {
+                            runs.insert(*n as u64);
+                        }
+                        other => {
+                            return Err(format!(
+                                "[output] record: {other} is not a run number (0 to {})",
+                                n_runs.saturating_sub(1)
+                            ))
+                        }
+                    }
+                }
+                Record::Runs(runs)
+            }
+            Some(other) => {
+                return Err(format!(
+                    "[output] record = {other}: allowed \"none\", \"all\" or a list of run numbers"
+                ))
+            }
+        };
+        Ok(sweep)
+    }
+
+    /// Number of runs the file describes.
+    pub fn n_runs(&self) -> Result<u64, String> {
+        match self.mode {
+            Mode::Grid => {
+                let mut n: u64 = 1;
+                for a in &self.axes {
+                    n = n.checked_mul(list_len(a) as u64).filter(|n| *n <= MAX_RUNS).ok_or_else(
+                        || format!("the grid has more than {MAX_RUNS} runs; use lhs or sobol"),
+                    )?;
+                }
+                Ok(n)
+            }
+            Mode::Zip => Ok(self.axes.first().map(|a| list_len(a) as u64).unwrap_or(1)),
+            Mode::Lhs | Mode::Sobol => Ok(self.samples),
+        }
+    }
+}
+
+fn list_len(a: &Axis) -> usize {
+    match &a.values {
+        AxisValues::List(v) => v.len(),
+        AxisValues::Range { .. } => 0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<SweepFile, String> {
+        SweepFile::from_str_at(text, Path::new("/nonexistent/test.toml"))
+    }
+
+    #[test]
+    fn spacing_hits_ends() {
+        assert_eq!(linspace(0.0, 0.1, 11)[10], 0.1);
+        assert_eq!(linspace(0.0, 0.1, 11)[0], 0.0);
+        assert_eq!(linspace(2.0, 3.0, 1), vec![2.0]);
+        let l = logspace(300.0, 1e5, 8);
+        assert_eq!(l.len(), 8);
+        assert_eq!((l[0], l[7]), (300.0, 1e5));
+        for w in l.windows(2) {
+            assert!((w[1] / w[0] - (1e5f64 / 300.0).powf(1.0 / 7.0)).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn grid_counts_and_name_default() {
+        let s = parse(
+            "[[axis]]\nkey = \"robot.dead_time\"\nvalues = [0.01, 0.07]\n[[axis]]\nkey = \"module\"\nvalues = [\"hydraulic\", \"bistable\", \"rigid\"]\n",
+        )
+        .unwrap();
+        assert_eq!(s.name, "test");
+        assert_eq!(s.n_runs().unwrap(), 6);
+        assert_eq!(s.axes[1].kind, AxisKind::Text);
+    }
+
+    #[test]
+    fn errors_name_the_key() {
+        let cases: &[(&str, &str)] = &[
+            ("nmae = \"x\"\n", "unknown key `nmae`"),
+            ("[[axis]]\nkey = \"robot.dead_tme\"\nvalues = [1]\n", "robot.dead_tme"),
+            ("[[axis]]\nkey = \"object.mass\"\nvalues = []\n", "`values` is empty"),
+            ("[[axis]]\nkey = \"object.mass\"\nlinspace = [0.1, 1, 0]\n", "n must be an integer >= 1"),
+            ("[[axis]]\nkey = \"object.mass\"\nrange = [0.1, 1]\n", "a `range` axis needs sampling mode lhs or sobol"),
+            (
+                "[sampling]\nmode = \"zip\"\n[[axis]]\nkey = \"object.mass\"\nvalues = [1, 2]\n[[axis]]\nkey = \"robot.dead_time\"\nvalues = [1]\n",
+                "zip needs axes of one length",
+            ),
+            ("[sampling]\nmode = \"lhs\"\n", "needs `samples`"),
+            ("[sampling]\nmode = \"sobol\"\nsamples = 100000\n", "at most 65536"),
+            ("[sampling]\nmode = \"grid\"\nsamples = 10\n", "`samples` is for lhs and sobol only"),
+            ("[set]\n\"object.mas\" = 1\n", "object.mas"),
+            ("[output]\nrecord = [99]\n", "not a run number"),
+            ("name = \"a/b\"\n", "`name`"),
+            ("[[axis]]\nkey = \"object.mass\"\nlogspace = [0, 1, 3]\n", "endpoints"),
+            ("x = [\n", "line"),
+        ];
+        for (text, want) in cases {
+            let e = parse(text).unwrap_err();
+            assert!(e.contains(want), "{text:?}: {e:?} lacks {want:?}");
+        }
+    }
+}
