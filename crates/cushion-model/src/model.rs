@@ -17,8 +17,12 @@
 //! tool-object penetration `x_t - x_p`, forward stop penetration `-s`, back stop penetration
 //! `s - L`, tool stick/slip (`sd` while slipping, `d - |F_static|` while stuck; only with
 //! `tool.dry_friction > 0`), object stick/slip (`v_p` while sliding, `mu m_p g - F_c` while
-//! stuck; only with plane friction), and the stroke's local maxima (`sd` falling, record only,
-//! so that `max_stroke` is exact). Robot kinks are time stops.
+//! stuck; only with plane friction). Robot kinks are time stops.
+//!
+//! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at four points of every step's dense output;
+//! the step holding the largest sample keeps five nodes of its dense output (a degree-4
+//! polynomial, so they reproduce it exactly) and the peak inside it is located once, at the end
+//! of the run, by golden-section search.
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
@@ -169,7 +173,6 @@ const EV_FWD: u8 = 2;
 const EV_BACK: u8 = 3;
 const EV_TOOL_STICK: u8 = 4;
 const EV_OBJ_STICK: u8 = 5;
-const EV_STROKE_MAX: u8 = 6;
 
 /// Peaks and counts gathered along the run.
 #[derive(Clone, Debug)]
@@ -205,6 +208,7 @@ pub struct Model {
     pub(crate) early_end: Option<f64>,
     fr_peak_step: Option<PeakStep>,
     fc_peak_step: Option<PeakStep>,
+    s_peak_step: Option<PeakStep>,
     early_end_enabled: bool,
     t_end: f64,
     settle_v: f64,
@@ -301,7 +305,6 @@ impl Model {
             if p.d > 0.0 {
                 add(EV_TOOL_STICK);
             }
-            add(EV_STROKE_MAX);
         }
         if p.has_object && p.mu_n > 0.0 {
             add(EV_OBJ_STICK);
@@ -336,6 +339,7 @@ impl Model {
             early_end: None,
             fr_peak_step: None,
             fc_peak_step: None,
+            s_peak_step: None,
             early_end_enabled: scene.solver.early_end,
             t_end: scene.t_end,
             settle_v: 100.0 * atol,
@@ -514,7 +518,6 @@ impl Model {
                     y[j + 1]
                 }
             }
-            EV_STROKE_MAX => v_r - tool(y).1,
             _ => 1.0,
         }
     }
@@ -613,16 +616,6 @@ impl Model {
                     }
                 }
             }
-            EV_STROKE_MAX => {
-                if let Some(i) = self.layout.tool {
-                    let (x_r, _, _) = self.robot.current().at(t);
-                    let s = x_r - y[i];
-                    if s > self.metrics.max_stroke {
-                        self.metrics.max_stroke = s;
-                    }
-                }
-                EventAction::Continue
-            }
             _ => EventAction::Continue,
         }
     }
@@ -667,7 +660,7 @@ impl Model {
         tool_settled && object_done
     }
 
-    /// Refine the peaks of `|F_r|` and `F_c` inside the steps that hold their largest samples,
+    /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest samples,
     /// by golden-section search on the step's dense output (rebuilt from its five nodes).
     pub(crate) fn refine_peaks(&mut self) {
         let n = self.layout.n.max(1).min(MAX_STATES);
@@ -685,6 +678,12 @@ impl Model {
             let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
             let (_, v) = golden_max(f, lo, hi, c.ts[c.k], self.metrics.peak_fc);
             self.metrics.peak_fc = self.metrics.peak_fc.max(v);
+        }
+        if let Some(c) = self.s_peak_step.take() {
+            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).s;
+            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
+            let (_, v) = golden_max(f, lo, hi, c.ts[c.k], self.metrics.max_stroke);
+            self.metrics.max_stroke = self.metrics.max_stroke.max(v);
         }
     }
 
@@ -708,6 +707,7 @@ impl Model {
         }
         let mut fr_best = (0usize, 0.0f64);
         let mut fc_best = (0usize, 0.0f64);
+        let mut s_best = (0usize, f64::NEG_INFINITY);
         for (k, node) in nodes.iter().enumerate().skip(1) {
             let e = self.eval(tk(k), &node[..n], &seg, &r);
             if e.f_r.abs() > fr_best.1.abs() {
@@ -716,8 +716,8 @@ impl Model {
             if e.f_c > fc_best.1 {
                 fc_best = (k, e.f_c);
             }
-            if self.layout.tool.is_some() && e.s > self.metrics.max_stroke {
-                self.metrics.max_stroke = e.s;
+            if e.s > s_best.1 {
+                s_best = (k, e.s);
             }
         }
         // A new largest sample: remember its step; the peak inside it is refined once, at the
@@ -731,6 +731,10 @@ impl Model {
         if fc_best.1 > self.metrics.peak_fc {
             self.metrics.peak_fc = fc_best.1;
             self.fc_peak_step = Some(cand(fc_best.0));
+        }
+        if self.layout.tool.is_some() && s_best.1 > self.metrics.max_stroke {
+            self.metrics.max_stroke = s_best.1;
+            self.s_peak_step = Some(cand(s_best.0));
         }
         if self.record.is_some() {
             let mut pts = Vec::new();
@@ -804,7 +808,8 @@ fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, t_best: f64, f_b
     let mut b = lo + R * (hi - lo);
     let mut fa = f(a);
     let mut fb = f(b);
-    for _ in 0..40 {
+    // 24 reductions shrink the bracket by 1e-5: the value is then right to ~1e-10 relative.
+    for _ in 0..24 {
         if fa > best.1 {
             best = (a, fa);
         }
@@ -904,7 +909,6 @@ impl<const N: usize> OdeSystem<N> for Model {
     fn event_direction(&self, i: usize) -> Direction {
         match self.events.get(i).copied() {
             Some(EV_SENSOR) => Direction::Rising,
-            Some(EV_STROKE_MAX) => Direction::Falling,
             _ => Direction::Both,
         }
     }
