@@ -196,7 +196,7 @@ where
         for (k, c) in panel.curves.iter().enumerate() {
             // The first curve is drawn wider, so a curve lying on it (rigid module: tool on
             // flange) still shows both.
-            let width = if k == 0 && panel.curves.len() > 1 { 4 } else { 2 };
+            let width = if k == 0 && panel.curves.len() > 1 { 3 } else { 2 };
             // Break the line where the value is absent (NaN).
             let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             for p in pts {
@@ -211,7 +211,9 @@ where
                 legend.push((format!("{} (n/a)", c.label), RGBColor(190, 190, 190), false));
                 continue;
             }
+            let bucket = (t1 - t0) * 3.0 / (SIZE.0 - LEGEND_WIDTH - 100) as f64;
             for seg in segments.into_iter().filter(|s| !s.is_empty()) {
+                let seg = decimate(&seg, bucket);
                 chart
                     .draw_series(LineSeries::new(seg, c.color.stroke_width(width)))
                     .map_err(err)?;
@@ -256,6 +258,45 @@ where
             .map_err(err)?;
     }
     Ok(())
+}
+
+/// Min-max decimation: per time bucket of `width` (about 3 pixels), keep the points of least
+/// and greatest value, in time order, plus the first and last point of the line. Peaks survive
+/// and sloped lines are drawn as straight strokes instead of pixel staircases.
+fn decimate(points: &[(f64, f64)], width: f64) -> Vec<(f64, f64)> {
+    if points.len() < 3 || !(width > 0.0) {
+        return points.to_vec();
+    }
+    let mut out = Vec::with_capacity(points.len().min(4096));
+    out.push(points[0]);
+    let mut i = 0;
+    while i < points.len() {
+        let start = points[i].0;
+        let (mut lo, mut hi) = (i, i);
+        let mut j = i;
+        while j < points.len() && points[j].0 < start + width {
+            if points[j].1 < points[lo].1 {
+                lo = j;
+            }
+            if points[j].1 > points[hi].1 {
+                hi = j;
+            }
+            j += 1;
+        }
+        let j = j.max(i + 1);
+        let (a, b) = if lo <= hi { (lo, hi) } else { (hi, lo) };
+        for k in [a, b] {
+            if out.last() != Some(&points[k]) {
+                out.push(points[k]);
+            }
+        }
+        i = j;
+    }
+    let last = points[points.len() - 1];
+    if out.last() != Some(&last) {
+        out.push(last);
+    }
+    out
 }
 
 fn format_ms(t: f64) -> String {
@@ -331,6 +372,22 @@ mod tests {
     #[test]
     fn empty_trajectory_is_an_error() {
         assert!(render_svg(&Trajectory::default(), &summary(), "x").is_err());
+    }
+
+    #[test]
+    fn decimation_keeps_peaks_and_ends() {
+        let pts: Vec<(f64, f64)> = (0..10_000)
+            .map(|i| {
+                let t = i as f64 * 1e-3;
+                (t, if i == 4321 { 50.0 } else if i == 777 { -9.0 } else { t.sin() })
+            })
+            .collect();
+        let d = decimate(&pts, 0.03);
+        assert!(d.len() < 1000, "{}", d.len());
+        assert_eq!(d.first(), pts.first());
+        assert_eq!(d.last(), pts.last());
+        assert!(d.contains(&pts[4321]) && d.contains(&pts[777]));
+        assert!(d.windows(2).all(|w| w[0].0 < w[1].0), "time order");
     }
 
     #[test]
