@@ -15,6 +15,8 @@
 //! | `solver.fixed_step` | step of the fixed-step methods `rk4`, `euler`, s | 1e-5 |
 //! | `solver.stiffness` | Hairer's stiffness test: `warn`, `stop` or `off` | `"warn"` |
 //! | `solver.early_end` | stop once nothing can change any more (results extrapolated) | `true` |
+//! | `hydraulic.cavitation` | bound the main chamber pressure: `p_m >= cavitation_pressure` | `false` |
+//! | `hydraulic.cavitation_pressure` | `p_cav`, Pa | 0.0 |
 //!
 //! Parsing never validates combinations; [`Scene::validate`] does (and `simulate` calls it).
 //! Every error names the key, the value and what is allowed.
@@ -168,6 +170,11 @@ pub struct Hydraulic {
     pub gas_volume: f64,
     /// `hydraulic.gas_exponent`: `kappa`, adiabatic exponent, - (in (1, 2]).
     pub gas_exponent: f64,
+    /// `hydraulic.cavitation`: bound the main chamber's pressure from below,
+    /// `p_m >= hydraulic.cavitation_pressure` (events at its onset and end). Extension.
+    pub cavitation: bool,
+    /// `hydraulic.cavitation_pressure`: `p_cav`, Pa (in the frame of `p10`; < `gas_pressure`).
+    pub cavitation_pressure: f64,
 }
 
 /// `[bistable]`: the von Mises snap-through element (SPEC section 4).
@@ -261,6 +268,8 @@ impl Default for Scene {
                 gas_pressure: 1000.0,
                 gas_volume: 7.63e-5,
                 gas_exponent: 1.4,
+                cavitation: false,
+                cavitation_pressure: 0.0,
             },
             bistable: Bistable {
                 spring_stiffness: 7022.0,
@@ -468,6 +477,8 @@ scene_keys! {
     "hydraulic.gas_pressure" => hydraulic.gas_pressure;
     "hydraulic.gas_volume" => hydraulic.gas_volume;
     "hydraulic.gas_exponent" => hydraulic.gas_exponent;
+    "hydraulic.cavitation" => hydraulic.cavitation;
+    "hydraulic.cavitation_pressure" => hydraulic.cavitation_pressure;
     "bistable.spring_stiffness" => bistable.spring_stiffness;
     "bistable.half_span" => bistable.half_span;
     "bistable.apex_rise" => bistable.apex_rise;
@@ -658,6 +669,13 @@ impl Scene {
         let k = h.gas_exponent;
         if !(k > 1.0 && k <= 2.0) {
             return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+        }
+        if !(h.cavitation_pressure < h.gas_pressure) {
+            return Err(invalid(
+                "hydraulic.cavitation_pressure",
+                h.cavitation_pressure,
+                format!("must be < hydraulic.gas_pressure = {}", format_float(h.gas_pressure)),
+            ));
         }
         let b = &self.bistable;
         pos("bistable.spring_stiffness", b.spring_stiffness)?;

@@ -113,6 +113,8 @@ pub(crate) struct Params {
     pub h: f64,
     pub e: f64,
     pub dead_time: f64,
+    /// Lower bound of the main chamber pressure (`None`: no cavitation model).
+    pub p_cav: Option<f64>,
 }
 
 /// The discrete state of the run.
@@ -126,6 +128,8 @@ pub(crate) struct Regime {
     /// Sign of `sd` while slipping (with dry friction).
     pub tool_dir: f64,
     pub obj_stuck: bool,
+    /// The main chamber sits at the cavitation pressure.
+    pub cavitating: bool,
 }
 
 /// Everything at one instant: kinematics (m, m/s, m/s^2), pressures (Pa), forces (N, + along
@@ -173,6 +177,7 @@ const EV_FWD: u8 = 2;
 const EV_BACK: u8 = 3;
 const EV_TOOL_STICK: u8 = 4;
 const EV_OBJ_STICK: u8 = 5;
+const EV_CAVITATION: u8 = 6;
 
 /// Peaks and counts gathered along the run.
 #[derive(Clone, Debug)]
@@ -248,6 +253,7 @@ impl Model {
             h: bi.apex_rise,
             e: bi.offset,
             dead_time: scene.robot.dead_time,
+            p_cav: (scene.module == Module::Hydraulic && h.cavitation).then_some(h.cavitation_pressure),
         };
         let from_rest = match scene.robot.start {
             RobotStart::Cruising => None,
@@ -286,6 +292,7 @@ impl Model {
             tool_stuck: false,
             tool_dir: 0.0,
             obj_stuck: p.mu_n > 0.0,
+            cavitating: false,
         };
         let mut events = [0u8; 8];
         let mut n_events = 0;
@@ -308,6 +315,9 @@ impl Model {
         }
         if p.has_object && p.mu_n > 0.0 {
             add(EV_OBJ_STICK);
+        }
+        if p.p_cav.is_some() {
+            add(EV_CAVITATION);
         }
         let rtol = scene.solver.rtol;
         let atol = scene.solver.atol;
@@ -400,6 +410,11 @@ impl Model {
                 Module::Hydraulic => {
                     e.p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, e.s);
                     e.dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, e.sd);
+                    if r.cavitating {
+                        // the liquid column tears: the chamber holds p_cav, the orifice
+                        // carries p_cav - p1
+                        e.dp = p.p_cav.unwrap_or(0.0) - e.p1;
+                    }
                     e.f_module = (e.p1 + e.dp) * p.a_p;
                     e.p_orifice = e.dp * p.a_p * e.sd;
                 }
@@ -518,6 +533,15 @@ impl Model {
                     y[j + 1]
                 }
             }
+            EV_CAVITATION => {
+                // p1 + dp - p_cav from the orifice law, whatever the regime
+                let s = x_r - tool(y).0;
+                let sd = v_r - tool(y).1;
+                let p = &self.p;
+                physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s)
+                    + physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, sd)
+                    - p.p_cav.unwrap_or(0.0)
+            }
             _ => 1.0,
         }
     }
@@ -615,6 +639,16 @@ impl Model {
                         EventAction::Continue
                     }
                 }
+            }
+            EV_CAVITATION => {
+                if self.regime.cavitating {
+                    self.log_event("cavitation_end", t, y);
+                    self.regime.cavitating = false;
+                } else {
+                    self.log_event("cavitation_begin", t, y);
+                    self.regime.cavitating = true;
+                }
+                EventAction::Restart
             }
             _ => EventAction::Continue,
         }

@@ -223,3 +223,9 @@ fn rejects_bad_bistable_offset_and_gas_exponent() {
     invalid_after("bistable.offset", "0.02");
     invalid_after("hydraulic.gas_exponent", "1.0");
 }
+
+#[test]
+fn rejects_cavitation_pressure_above_gas_pressure() {
+    let m = invalid_after("hydraulic.cavitation_pressure", "2000");
+    assert!(m.contains("hydraulic.gas_pressure"), "{m}");
+}

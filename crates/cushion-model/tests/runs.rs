@@ -456,3 +456,36 @@ fn event_log_and_trajectory_are_consistent() {
     assert!(r.trajectory.unwrap().points.iter().all(|p| p.p1.is_nan()));
     assert_eq!(r.summary.max_gas_pressure, None);
 }
+
+#[test]
+fn cavitation_bounds_the_chamber_pressure() {
+    let s = tight(with(
+        paper("paper-hydraulic-dt10"),
+        &[("hydraulic.cavitation", "true"), ("hydraulic.cavitation_pressure", "500")],
+    ));
+    let r = run_traj(&s, 1e-4);
+    let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
+    assert!(names.contains(&"cavitation_begin") && names.contains(&"cavitation_end"), "{names:?}");
+    assert!(r.summary.energy_residual.unwrap() < 1e-6);
+    // p_m = (-F_r - b sd - F_stop) / A_p never falls below p_cav (checked off the stops)
+    let mut below_without = false;
+    for p in &r.trajectory.as_ref().unwrap().points {
+        if p.s > 0.0 && p.s < s.stops.stroke {
+            let p_m = (-p.f_r - s.tool.viscous_friction * (p.v_r - p.v_t)) / s.piston_area();
+            assert!(p_m >= 500.0 - 1e-6, "p_m = {p_m} at t = {}", p.t);
+        }
+    }
+    // without the bound the orifice law alone drives it lower
+    let r0 = run_traj(&with(s.clone(), &[("hydraulic.cavitation", "false")]), 1e-4);
+    for p in &r0.trajectory.as_ref().unwrap().points {
+        if p.s > 0.0 && p.s < s.stops.stroke {
+            let p_m = (-p.f_r - s.tool.viscous_friction * (p.v_r - p.v_t)) / s.piston_area();
+            below_without |= p_m < 0.0;
+        }
+    }
+    assert!(below_without);
+    // a bound that is never reached changes nothing
+    let idle = run(&with(s.clone(), &[("hydraulic.cavitation_pressure", "-1e6")])).summary;
+    let off = run(&with(s, &[("hydraulic.cavitation", "false")])).summary;
+    assert_same(&idle, &off, 1e-7, "idle cavitation");
+}
