@@ -202,7 +202,7 @@ fn sample_interval(args: &SimulateArgs, scene: &Scene) -> Result<Option<f64>, Fa
         Some(dt) if !dt.is_finite() || dt < 0.0 => Err(Failure::Input(format!(
             "--sample-interval = {dt}: expected a finite number of seconds >= 0 (0: steps and events only)"
         ))),
-        Some(dt) if dt == 0.0 => Ok(None),
+        Some(0.0) => Ok(None),
         Some(dt) => Ok(Some(dt)),
         None => Ok(float_key(scene, "t_end").map(|t| t / 2000.0).filter(|dt| *dt > 0.0)),
     }
@@ -235,6 +235,14 @@ fn scene_label(args: &SimulateArgs) -> String {
 }
 
 fn plot_title(args: &SimulateArgs, scene: &Scene) -> String {
+    let source = match &args.scene {
+        Some(p) => p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+        None => "default scene".to_string(),
+    };
+    let source = match args.set.len() {
+        0 => source,
+        n => format!("{source} + {n} --set"),
+    };
     let mut parts = Vec::new();
     if let Some(m) = text_key(scene, "module") {
         parts.push(format!("{m} module"));
@@ -245,7 +253,7 @@ fn plot_title(args: &SimulateArgs, scene: &Scene) -> String {
     if let Some(m) = float_key(scene, "object.mass") {
         parts.push(format!("object {} kg", trim_zeros(fmt_sig(m, 4))));
     }
-    parts.push(scene_label(args));
+    parts.push(source);
     parts.join(", ")
 }
 

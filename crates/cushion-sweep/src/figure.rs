@@ -88,7 +88,7 @@ pub fn render_svg(trajectory: &Trajectory, summary: &Summary, title: &str) -> io
     }
     let t0 = pts.first().map(|p| p.t * 1e3).unwrap_or(0.0);
     let mut t1 = pts.last().map(|p| p.t * 1e3).unwrap_or(1.0);
-    if !(t1 > t0) {
+    if t1.is_nan() || t1 <= t0 {
         t1 = t0 + 1.0;
     }
     let mut svg = String::new();
@@ -264,7 +264,7 @@ where
 /// and greatest value, in time order, plus the first and last point of the line. Peaks survive
 /// and sloped lines are drawn as straight strokes instead of pixel staircases.
 fn decimate(points: &[(f64, f64)], width: f64) -> Vec<(f64, f64)> {
-    if points.len() < 3 || !(width > 0.0) {
+    if points.len() < 3 || width.is_nan() || width <= 0.0 {
         return points.to_vec();
     }
     let mut out = Vec::with_capacity(points.len().min(4096));
@@ -308,7 +308,7 @@ fn format_tick(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 {
         "0".to_string()
-    } else if a >= 1e5 || a < 1e-3 {
+    } else if !(1e-3..1e5).contains(&a) {
         format!("{v:.1e}")
     } else {
         let s = format!("{v:.3}");
