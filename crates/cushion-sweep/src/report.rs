@@ -165,9 +165,9 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
     modules.sort();
     modules.dedup();
     let several = centres.len() < rows.force.len() / modules.len().max(1);
-    for (area, values, ylabel, caption) in [
-        (&left, &rows.speed, "|object final velocity| [m/s]", "Object final speed"),
-        (&right, &rows.force, "|peak robot force| [N]", "Peak robot force"),
+    for (area, values, ylabel, caption, ydigits) in [
+        (&left, &rows.speed, "|object final velocity| [m/s]", "Object final speed", 2usize),
+        (&right, &rows.force, "|peak robot force| [N]", "Peak robot force", 0usize),
     ] {
         // Per module and group: (min, median, max).
         let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
@@ -196,7 +196,7 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
             .map(|s| s.3)
             .fold(0.0f64, f64::max)
             .max(1e-9)
-            * 1.1;
+            * 1.3; // head room for the legend
         let (x0, x1) = (
             centres.first().copied().unwrap_or(0.0) * 1e3,
             centres.last().copied().unwrap_or(0.1) * 1e3,
@@ -215,9 +215,12 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
             .configure_mesh()
             .x_desc("dead time [ms]")
             .y_desc(ylabel)
+            .x_label_formatter(&|v| format!("{v:.0}"))
+            .y_label_formatter(&|v| format!("{v:.ydigits$}"))
             .label_style(("sans-serif", 15))
             .axis_desc_style(("sans-serif", 16))
-            .light_line_style(RGBColor(235, 235, 235))
+            .bold_line_style(RGBColor(225, 225, 225))
+            .light_line_style(WHITE)
             .draw()?;
         for (m, s) in &stats {
             let color = module_color(m);
