@@ -18,13 +18,28 @@ fn rejected(args: &[&str], must_name: &[&str]) -> String {
         .expect("run cushion");
     let stderr = String::from_utf8_lossy(&o.stderr).to_string();
     assert_eq!(o.status.code(), Some(2), "args {args:?}: stderr {stderr}");
-    assert!(o.stdout.is_empty(), "args {args:?}: stdout {}", String::from_utf8_lossy(&o.stdout));
+    assert!(
+        o.stdout.is_empty(),
+        "args {args:?}: stdout {}",
+        String::from_utf8_lossy(&o.stdout)
+    );
     assert!(!stderr.contains("panicked"), "{stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one message, got:\n{stderr}");
+    assert_eq!(
+        stderr.trim_end().lines().count(),
+        1,
+        "one message, got:\n{stderr}"
+    );
     for text in must_name {
-        assert!(stderr.contains(text), "args {args:?}: message does not name `{text}`: {stderr}");
+        assert!(
+            stderr.contains(text),
+            "args {args:?}: message does not name `{text}`: {stderr}"
+        );
     }
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "args {args:?}: files were written");
+    assert_eq!(
+        std::fs::read_dir(dir.path()).unwrap().count(),
+        0,
+        "args {args:?}: files were written"
+    );
     stderr
 }
 
@@ -40,8 +55,14 @@ fn zero_tool_mass() {
 
 #[test]
 fn orifice_not_smaller_than_piston() {
-    rejected(&["--set", "hydraulic.orifice_radius=0.02"], &["orifice_radius"]);
-    rejected(&["--set", "hydraulic.orifice_radius=0.03"], &["orifice_radius", "0.03"]);
+    rejected(
+        &["--set", "hydraulic.orifice_radius=0.02"],
+        &["orifice_radius"],
+    );
+    rejected(
+        &["--set", "hydraulic.orifice_radius=0.03"],
+        &["orifice_radius", "0.03"],
+    );
 }
 
 #[test]
@@ -52,14 +73,23 @@ fn gas_volume_reaching_zero_in_the_stroke() {
 
 #[test]
 fn sensor_threshold_outside_the_stroke() {
-    rejected(&["--set", "tool.sensor_threshold=0.03"], &["tool.sensor_threshold", "0.03"]);
-    rejected(&["--set", "tool.sensor_threshold=-0.001"], &["tool.sensor_threshold"]);
+    rejected(
+        &["--set", "tool.sensor_threshold=0.03"],
+        &["tool.sensor_threshold", "0.03"],
+    );
+    rejected(
+        &["--set", "tool.sensor_threshold=-0.001"],
+        &["tool.sensor_threshold"],
+    );
 }
 
 #[test]
 fn nan_and_infinite_values() {
     rejected(&["--set", "robot.dead_time=nan"], &["robot.dead_time"]);
-    rejected(&["--set", "robot.approach_speed=inf"], &["robot.approach_speed"]);
+    rejected(
+        &["--set", "robot.approach_speed=inf"],
+        &["robot.approach_speed"],
+    );
     rejected(&["--set", "object.mass=-inf"], &["object.mass"]);
 }
 
@@ -71,14 +101,20 @@ fn unknown_key() {
 
 #[test]
 fn wrong_type() {
-    rejected(&["--set", "robot.dead_time=fast"], &["robot.dead_time", "fast"]);
+    rejected(
+        &["--set", "robot.dead_time=fast"],
+        &["robot.dead_time", "fast"],
+    );
     rejected(&["--set", "module=3"], &["module"]);
     rejected(&["--set", "module=pneumatic"], &["module", "pneumatic"]);
 }
 
 #[test]
 fn set_without_equals() {
-    rejected(&["--set", "robot.dead_time"], &["robot.dead_time", "KEY=VALUE"]);
+    rejected(
+        &["--set", "robot.dead_time"],
+        &["robot.dead_time", "KEY=VALUE"],
+    );
 }
 
 #[test]

@@ -13,14 +13,23 @@ fn simulate(args: &[&str]) -> Value {
         .arg("--json")
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
 /// `section.name=value` for every leaf of a scene table.
 fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<String>) {
     for (k, v) in table {
-        let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
         match v {
             toml::Value::Table(t) => flatten(&key, t, out),
             toml::Value::String(s) => out.push(format!("{key}={s}")),
@@ -32,7 +41,9 @@ fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<String>) {
 #[test]
 fn shipped_scenes_run_and_match_set() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("sweeps/scenes");
-    let Ok(entries) = std::fs::read_dir(&dir) else { return };
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return;
+    };
     let mut n = 0;
     for e in entries {
         let path = e.unwrap().path();
@@ -50,7 +61,12 @@ fn shipped_scenes_run_and_match_set() {
             args.push("--set");
             args.push(s.as_str());
         }
-        assert_eq!(simulate(&args), from_file, "{}: file vs --set", path.display());
+        assert_eq!(
+            simulate(&args),
+            from_file,
+            "{}: file vs --set",
+            path.display()
+        );
         n += 1;
     }
     eprintln!("{n} scene files");

@@ -71,11 +71,16 @@ pub fn run(args: SimulateArgs) -> i32 {
 
 fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
     let scene = build_scene(args)?;
-    scene.validate().map_err(|e| Failure::Input(e.to_string()))?;
+    scene
+        .validate()
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let outputs = outputs(args)?;
     let sample_interval = sample_interval(args, &scene)?;
 
-    let opts = RunOptions { trajectory: !outputs.is_empty(), sample_interval };
+    let opts = RunOptions {
+        trajectory: !outputs.is_empty(),
+        sample_interval,
+    };
     let result = simulate(&scene, &opts);
     let summary = &result.summary;
     if summary.status == RunStatus::Invalid {
@@ -96,12 +101,18 @@ fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
                 for p in &written {
                     let _ = std::fs::remove_file(p);
                 }
-                return Err(Failure::Output(format!("{} {}: {e}", kind.flag(), path.display())));
+                return Err(Failure::Output(format!(
+                    "{} {}: {e}",
+                    kind.flag(),
+                    path.display()
+                )));
             }
             written.push(path);
         }
     } else if !outputs.is_empty() {
-        return Err(Failure::Output("the run recorded no trajectory; nothing written".into()));
+        return Err(Failure::Output(
+            "the run recorded no trajectory; nothing written".into(),
+        ));
     }
 
     let text = if args.json {
@@ -118,7 +129,11 @@ fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
         let mut out = std::io::stdout().lock();
         let _ = out.write_all(text.as_bytes()).and_then(|_| out.flush());
     }
-    Ok(if summary.status == RunStatus::Ok { 0 } else { 1 })
+    Ok(if summary.status == RunStatus::Ok {
+        0
+    } else {
+        1
+    })
 }
 
 /// The scene file (or the defaults), then every `--set` in order.
@@ -162,7 +177,11 @@ impl Output {
 /// directory, and no two may be the same path.
 fn outputs(args: &SimulateArgs) -> Result<Vec<(Output, PathBuf)>, Failure> {
     let mut out = Vec::new();
-    for (kind, path) in [(Output::Csv, &args.csv), (Output::Mcap, &args.mcap), (Output::Plot, &args.plot)] {
+    for (kind, path) in [
+        (Output::Csv, &args.csv),
+        (Output::Mcap, &args.mcap),
+        (Output::Plot, &args.plot),
+    ] {
         let Some(path) = path else { continue };
         if path.as_os_str().is_empty() || path.is_dir() {
             return Err(Failure::Input(format!(
@@ -236,7 +255,10 @@ fn scene_label(args: &SimulateArgs) -> String {
 
 fn plot_title(args: &SimulateArgs, scene: &Scene) -> String {
     let source = match &args.scene {
-        Some(p) => p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default(),
+        Some(p) => p
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_default(),
         None => "default scene".to_string(),
     };
     let source = match args.set.len() {
@@ -298,29 +320,101 @@ fn human_summary(args: &SimulateArgs, scene: &Scene, s: &Summary, written: &[&Pa
     let yes_no = |b: bool| (if b { "yes" } else { "no" }.to_string(), String::new());
     let mut rows: Vec<(&str, (String, String), String)> = vec![
         ("scene", (scene_label(args), String::new()), String::new()),
-        ("module", (text_key(scene, "module").unwrap_or_default(), String::new()), String::new()),
-        ("status", (s.status.name().to_string(), String::new()), String::new()),
+        (
+            "module",
+            (text_key(scene, "module").unwrap_or_default(), String::new()),
+            String::new(),
+        ),
+        (
+            "status",
+            (s.status.name().to_string(), String::new()),
+            String::new(),
+        ),
     ];
     if !s.message.is_empty() {
         rows.push(("message", (s.message.clone(), String::new()), String::new()));
     }
     rows.extend([
-        ("t_detect", opt(s.t_detect, 1e3, "ms", "never"), "sensor switched".to_string()),
-        ("t_brake", opt(s.t_brake, 1e3, "ms", "never"), "robot starts braking".to_string()),
-        ("peak_robot_force", num(s.peak_robot_force, 1.0, "N"), "force on the robot at its largest |F_r|".into()),
-        ("t_peak_robot_force", num(s.t_peak_robot_force, 1e3, "ms"), "time of that peak".into()),
-        ("robot_impulse", num(s.robot_impulse, 1.0, "N s"), "integral of F_r over the run".into()),
-        ("peak_contact_force", num(s.peak_contact_force, 1.0, "N"), "largest tool-object contact force".into()),
-        ("object_impacts", count(s.object_impacts), "tool-object contact phases".into()),
-        ("forward_stop_impacts", count(s.forward_stop_impacts), "impacts on the forward end-stop".into()),
-        ("back_stop_impacts", count(s.back_stop_impacts), "impacts on the back end-stop".into()),
-        ("object_final_velocity", opt(s.object_final_velocity, 1.0, "m/s", "n/a (no object)"), "object speed at the end".into()),
-        ("object_final_momentum", opt(s.object_final_momentum, 1.0, "kg m/s", "n/a (no object)"), "object momentum at the end".into()),
-        ("object_travel", opt(s.object_travel, 1e3, "mm", "n/a (no object)"), "x_p(end) - x_p(0)".into()),
-        ("max_stroke", num(s.max_stroke, 1e3, "mm"), "largest stroke s".into()),
-        ("back_stop_hit", yes_no(s.back_stop_hit), "tool reached the back end-stop".into()),
-        ("max_gas_pressure", opt(s.max_gas_pressure, 1e-3, "kPa", "n/a (no gas)"), "largest gas pressure p1".into()),
-        ("energy_residual", opt(s.energy_residual, 1.0, "", "off"), "energy ledger mismatch / largest term".into()),
+        (
+            "t_detect",
+            opt(s.t_detect, 1e3, "ms", "never"),
+            "sensor switched".to_string(),
+        ),
+        (
+            "t_brake",
+            opt(s.t_brake, 1e3, "ms", "never"),
+            "robot starts braking".to_string(),
+        ),
+        (
+            "peak_robot_force",
+            num(s.peak_robot_force, 1.0, "N"),
+            "force on the robot at its largest |F_r|".into(),
+        ),
+        (
+            "t_peak_robot_force",
+            num(s.t_peak_robot_force, 1e3, "ms"),
+            "time of that peak".into(),
+        ),
+        (
+            "robot_impulse",
+            num(s.robot_impulse, 1.0, "N s"),
+            "integral of F_r over the run".into(),
+        ),
+        (
+            "peak_contact_force",
+            num(s.peak_contact_force, 1.0, "N"),
+            "largest tool-object contact force".into(),
+        ),
+        (
+            "object_impacts",
+            count(s.object_impacts),
+            "tool-object contact phases".into(),
+        ),
+        (
+            "forward_stop_impacts",
+            count(s.forward_stop_impacts),
+            "impacts on the forward end-stop".into(),
+        ),
+        (
+            "back_stop_impacts",
+            count(s.back_stop_impacts),
+            "impacts on the back end-stop".into(),
+        ),
+        (
+            "object_final_velocity",
+            opt(s.object_final_velocity, 1.0, "m/s", "n/a (no object)"),
+            "object speed at the end".into(),
+        ),
+        (
+            "object_final_momentum",
+            opt(s.object_final_momentum, 1.0, "kg m/s", "n/a (no object)"),
+            "object momentum at the end".into(),
+        ),
+        (
+            "object_travel",
+            opt(s.object_travel, 1e3, "mm", "n/a (no object)"),
+            "x_p(end) - x_p(0)".into(),
+        ),
+        (
+            "max_stroke",
+            num(s.max_stroke, 1e3, "mm"),
+            "largest stroke s".into(),
+        ),
+        (
+            "back_stop_hit",
+            yes_no(s.back_stop_hit),
+            "tool reached the back end-stop".into(),
+        ),
+        (
+            "max_gas_pressure",
+            opt(s.max_gas_pressure, 1e-3, "kPa", "n/a (no gas)"),
+            "largest gas pressure p1".into(),
+        ),
+        (
+            "energy_residual",
+            opt(s.energy_residual, 1.0, "", "off"),
+            "energy ledger mismatch / largest term".into(),
+        ),
         (
             "stats",
             (
@@ -347,7 +441,11 @@ fn human_summary(args: &SimulateArgs, scene: &Scene, s: &Summary, written: &[&Pa
         .unwrap_or(0);
     let mut out = String::new();
     for (name, (value, unit), what) in rows {
-        let vu = if unit.is_empty() { value } else { format!("{value} {unit}") };
+        let vu = if unit.is_empty() {
+            value
+        } else {
+            format!("{value} {unit}")
+        };
         if what.is_empty() {
             out.push_str(&format!("{name:<name_w$}  {vu}\n"));
         } else {

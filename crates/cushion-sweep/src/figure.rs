@@ -14,7 +14,6 @@ use std::path::Path;
 use cushion_model::{Summary, Trajectory, TrajectoryPoint};
 use plotters::prelude::*;
 
-
 const ROBOT: RGBColor = RGBColor(31, 119, 180);
 const TOOL: RGBColor = RGBColor(255, 127, 14);
 const OBJECT: RGBColor = RGBColor(44, 160, 44);
@@ -46,9 +45,21 @@ fn panels() -> Vec<Panel> {
             caption: "Positions",
             y_desc: "position [mm]",
             curves: vec![
-                Curve { label: "robot flange x_r", color: ROBOT, value: |p| p.x_r * 1e3 },
-                Curve { label: "tool x_t", color: TOOL, value: |p| p.x_t * 1e3 },
-                Curve { label: "object x_p", color: OBJECT, value: |p| p.x_p * 1e3 },
+                Curve {
+                    label: "robot flange x_r",
+                    color: ROBOT,
+                    value: |p| p.x_r * 1e3,
+                },
+                Curve {
+                    label: "tool x_t",
+                    color: TOOL,
+                    value: |p| p.x_t * 1e3,
+                },
+                Curve {
+                    label: "object x_p",
+                    color: OBJECT,
+                    value: |p| p.x_p * 1e3,
+                },
             ],
             absent: "no positions",
         },
@@ -56,24 +67,48 @@ fn panels() -> Vec<Panel> {
             caption: "Velocities",
             y_desc: "velocity [m/s]",
             curves: vec![
-                Curve { label: "robot flange v_r", color: ROBOT, value: |p| p.v_r },
-                Curve { label: "tool v_t", color: TOOL, value: |p| p.v_t },
-                Curve { label: "object v_p", color: OBJECT, value: |p| p.v_p },
+                Curve {
+                    label: "robot flange v_r",
+                    color: ROBOT,
+                    value: |p| p.v_r,
+                },
+                Curve {
+                    label: "tool v_t",
+                    color: TOOL,
+                    value: |p| p.v_t,
+                },
+                Curve {
+                    label: "object v_p",
+                    color: OBJECT,
+                    value: |p| p.v_p,
+                },
             ],
             absent: "no velocities",
         },
         Panel {
             caption: "Gas pressure",
             y_desc: "pressure p1 [kPa]",
-            curves: vec![Curve { label: "gas pressure p1", color: ROBOT, value: |p| p.p1 * 1e-3 }],
+            curves: vec![Curve {
+                label: "gas pressure p1",
+                color: ROBOT,
+                value: |p| p.p1 * 1e-3,
+            }],
             absent: "no gas in this scene (n/a)",
         },
         Panel {
             caption: "Forces",
             y_desc: "force [N]",
             curves: vec![
-                Curve { label: "force on the robot F_r", color: ROBOT, value: |p| p.f_r },
-                Curve { label: "contact force tool-object F_c", color: CONTACT, value: |p| p.f_c },
+                Curve {
+                    label: "force on the robot F_r",
+                    color: ROBOT,
+                    value: |p| p.f_r,
+                },
+                Curve {
+                    label: "contact force tool-object F_c",
+                    color: CONTACT,
+                    value: |p| p.f_c,
+                },
             ],
             absent: "no forces",
         },
@@ -108,7 +143,12 @@ pub fn render_svg(trajectory: &Trajectory, summary: &Summary, title: &str) -> io
 }
 
 /// Draw figure 3 of one run into an SVG file (atomically).
-pub fn write_svg(path: &Path, trajectory: &Trajectory, summary: &Summary, title: &str) -> io::Result<()> {
+pub fn write_svg(
+    path: &Path,
+    trajectory: &Trajectory,
+    summary: &Summary,
+    title: &str,
+) -> io::Result<()> {
     let svg = render_svg(trajectory, summary, title)?;
     crate::atomic::write_atomic(path, svg.as_bytes())
 }
@@ -134,7 +174,11 @@ fn y_range(panel: &Panel, pts: &[TrajectoryPoint]) -> Option<(f64, f64)> {
         return None;
     }
     let span = hi - lo;
-    let pad = if span > 0.0 { 0.06 * span } else { (lo.abs() * 0.1).max(1e-3) };
+    let pad = if span > 0.0 {
+        0.06 * span
+    } else {
+        (lo.abs() * 0.1).max(1e-3)
+    };
     Some((lo - pad, hi + pad))
 }
 
@@ -151,7 +195,9 @@ fn draw_panel<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| io::Error::other(format!("drawing the figure: {e:?}"));
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| {
+        io::Error::other(format!("drawing the figure: {e:?}"))
+    };
     let (w, _) = area.dim_in_pixel();
     let (plot_area, legend_area) = area.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
     let range = y_range(panel, pts);
@@ -196,7 +242,11 @@ where
         for (k, c) in panel.curves.iter().enumerate() {
             // The first curve is drawn wider, so a curve lying on it (rigid module: tool on
             // flange) still shows both.
-            let width = if k == 0 && panel.curves.len() > 1 { 3 } else { 2 };
+            let width = if k == 0 && panel.curves.len() > 1 {
+                3
+            } else {
+                2
+            };
             // Break the line where the value is absent (NaN).
             let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
             for p in pts {
@@ -226,7 +276,9 @@ where
         (summary.t_detect, "detection", DETECT),
         (summary.t_brake, "brake start", BRAKE),
     ] {
-        let Some(t) = t.filter(|t| t.is_finite()) else { continue };
+        let Some(t) = t.filter(|t| t.is_finite()) else {
+            continue;
+        };
         let x = t * 1e3;
         if x < t0 || x > t1 {
             continue;
@@ -248,10 +300,16 @@ where
         let y = 40 + 22 * i as i32;
         let style = color.stroke_width(2);
         if *dashed {
-            legend_area.draw(&PathElement::new(vec![(4, y), (12, y)], style)).map_err(err)?;
-            legend_area.draw(&PathElement::new(vec![(17, y), (25, y)], style)).map_err(err)?;
+            legend_area
+                .draw(&PathElement::new(vec![(4, y), (12, y)], style))
+                .map_err(err)?;
+            legend_area
+                .draw(&PathElement::new(vec![(17, y), (25, y)], style))
+                .map_err(err)?;
         } else {
-            legend_area.draw(&PathElement::new(vec![(4, y), (28, y)], style)).map_err(err)?;
+            legend_area
+                .draw(&PathElement::new(vec![(4, y), (28, y)], style))
+                .map_err(err)?;
         }
         legend_area
             .draw(&Text::new(label.as_str(), (36, y - 7), font.clone()))
@@ -313,7 +371,11 @@ fn format_tick(v: f64) -> String {
     } else {
         let s = format!("{v:.3}");
         let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" { "0".to_string() } else { s.to_string() }
+        if s == "-0" {
+            "0".to_string()
+        } else {
+            s.to_string()
+        }
     }
 }
 
@@ -328,15 +390,24 @@ mod tests {
                 TrajectoryPoint {
                     t,
                     x_r: t,
-                    v_r: if t < 0.08 { 1.0 } else { (1.0 - 10.0 * (t - 0.08)).max(0.0) },
+                    v_r: if t < 0.08 {
+                        1.0
+                    } else {
+                        (1.0 - 10.0 * (t - 0.08)).max(0.0)
+                    },
                     x_t: t - 2e-3 * (t * 30.0).sin().abs(),
                     v_t: 0.8,
                     x_p: 1e-3 + 0.5 * t,
                     v_p: if t < 0.01 { 0.0 } else { 0.6 },
                     s: 1e-3,
-                    p1: if gas { 1000.0 + 5e4 * (-(t - 0.02).powi(2) / 1e-4).exp() } else { f64::NAN },
+                    p1: if gas {
+                        1000.0 + 5e4 * (-(t - 0.02).powi(2) / 1e-4).exp()
+                    } else {
+                        f64::NAN
+                    },
                     f_c: (40.0 * (-(t - 0.01).powi(2) / 1e-6).exp()).max(0.0),
-                    f_r: -30.0 * (-(t - 0.01).powi(2) / 1e-6).exp() + 8.0 * (-(t - 0.15).powi(2) / 1e-5).exp(),
+                    f_r: -30.0 * (-(t - 0.01).powi(2) / 1e-6).exp()
+                        + 8.0 * (-(t - 0.15).powi(2) / 1e-5).exp(),
                 }
             })
             .collect();
@@ -355,7 +426,15 @@ mod tests {
         let svg = render_svg(&traj(true), &summary(), "hydraulic, dead time 70 ms").unwrap();
         assert!(svg.starts_with("<svg"));
         assert!(svg.trim_end().ends_with("</svg>"));
-        for text in ["Positions", "Velocities", "Gas pressure", "Forces", "time [ms]", "detection 10.5 ms", "force on the robot F_r"] {
+        for text in [
+            "Positions",
+            "Velocities",
+            "Gas pressure",
+            "Forces",
+            "time [ms]",
+            "detection 10.5 ms",
+            "force on the robot F_r",
+        ] {
             assert!(svg.contains(text), "missing {text}");
         }
         if let Ok(dir) = std::env::var("CUSHION_FIGURE_DIR") {
@@ -379,7 +458,16 @@ mod tests {
         let pts: Vec<(f64, f64)> = (0..10_000)
             .map(|i| {
                 let t = i as f64 * 1e-3;
-                (t, if i == 4321 { 50.0 } else if i == 777 { -9.0 } else { t.sin() })
+                (
+                    t,
+                    if i == 4321 {
+                        50.0
+                    } else if i == 777 {
+                        -9.0
+                    } else {
+                        t.sin()
+                    },
+                )
             })
             .collect();
         let d = decimate(&pts, 0.03);

@@ -89,11 +89,22 @@ mod tests {
 
     fn parse_csv(text: &str) -> (Vec<String>, Vec<Vec<Option<f64>>>) {
         let mut lines = text.lines();
-        let header = lines.next().unwrap().split(',').map(str::to_string).collect();
+        let header = lines
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_string)
+            .collect();
         let rows = lines
             .map(|l| {
                 l.split(',')
-                    .map(|c| if c.is_empty() { None } else { Some(c.parse::<f64>().unwrap()) })
+                    .map(|c| {
+                        if c.is_empty() {
+                            None
+                        } else {
+                            Some(c.parse::<f64>().unwrap())
+                        }
+                    })
                     .collect()
             })
             .collect();
@@ -102,7 +113,9 @@ mod tests {
 
     #[test]
     fn header_rows_and_exact_values() {
-        let traj = Trajectory { points: vec![point(0.0), point(1.0 / 3.0), point(0.3)] };
+        let traj = Trajectory {
+            points: vec![point(0.0), point(1.0 / 3.0), point(0.3)],
+        };
         let mut buf = Vec::new();
         write_csv_to(&mut buf, &traj).unwrap();
         let text = String::from_utf8(buf).unwrap();
@@ -125,10 +138,26 @@ mod tests {
 
     #[test]
     fn numbers_round_trip() {
-        for v in [0.0, -0.0, 1.0, 0.1, 1e-4, 9.99e-5, 1e-300, 5e-324, 1e15, 123456.789, f64::MAX] {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1e-4,
+            9.99e-5,
+            1e-300,
+            5e-324,
+            1e15,
+            123456.789,
+            f64::MAX,
+        ] {
             let mut s = String::new();
             push_number(&mut s, v);
-            assert_eq!(s.parse::<f64>().unwrap().to_bits(), v.to_bits(), "{v} -> {s}");
+            assert_eq!(
+                s.parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{v} -> {s}"
+            );
         }
         let mut s = String::new();
         push_number(&mut s, f64::NAN);
@@ -139,7 +168,13 @@ mod tests {
     fn atomic_write_leaves_no_temp_and_no_partial_file() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("traj.csv");
-        write_csv(&path, &Trajectory { points: vec![point(0.0)] }).unwrap();
+        write_csv(
+            &path,
+            &Trajectory {
+                points: vec![point(0.0)],
+            },
+        )
+        .unwrap();
         assert!(path.exists());
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 

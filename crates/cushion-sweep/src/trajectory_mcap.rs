@@ -154,8 +154,10 @@ pub fn write_run<W: Write + Seek>(
     events: &[EventLogEntry],
 ) -> McapResult<()> {
     let (state_topic, events_topic) = topics(prefix);
-    let state_schema = writer.add_schema(STATE_SCHEMA_NAME, "jsonschema", state_schema().as_bytes())?;
-    let event_schema = writer.add_schema(EVENT_SCHEMA_NAME, "jsonschema", event_schema().as_bytes())?;
+    let state_schema =
+        writer.add_schema(STATE_SCHEMA_NAME, "jsonschema", state_schema().as_bytes())?;
+    let event_schema =
+        writer.add_schema(EVENT_SCHEMA_NAME, "jsonschema", event_schema().as_bytes())?;
     let meta = BTreeMap::new();
     let state_ch = writer.add_channel(state_schema, &state_topic, "json", &meta)?;
     let events_ch = writer.add_channel(event_schema, &events_topic, "json", &meta)?;
@@ -187,7 +189,11 @@ pub fn write_run<W: Write + Seek>(
 }
 
 /// Write a single-run MCAP file (topics `/state` and `/events`), atomically.
-pub fn write_mcap(path: &Path, trajectory: &Trajectory, events: &[EventLogEntry]) -> io::Result<()> {
+pub fn write_mcap(
+    path: &Path,
+    trajectory: &Trajectory,
+    events: &[EventLogEntry],
+) -> io::Result<()> {
     write_atomically(path, |w: &mut BufWriter<File>| {
         let mut writer = write_options().create(&mut *w).map_err(mcap_io)?;
         write_run(&mut writer, "", trajectory, events).map_err(mcap_io)?;
@@ -214,7 +220,11 @@ mod tests {
             v_r: 1.0,
             x_t: t - 1e-4,
             v_t: 0.9,
-            x_p: if with_object { 1e-3 + 0.5 * t } else { f64::NAN },
+            x_p: if with_object {
+                1e-3 + 0.5 * t
+            } else {
+                f64::NAN
+            },
             v_p: if with_object { 0.5 } else { f64::NAN },
             s: 1e-4,
             p1: 1000.0 + t * 10.0,
@@ -228,8 +238,16 @@ mod tests {
             points: (0..50).map(|i| point(i as f64 * 0.006, true)).collect(),
         };
         let events = vec![
-            EventLogEntry { t: 0.0123, name: "sensor".into(), point: point(0.0123, true) },
-            EventLogEntry { t: 0.0823, name: "brake".into(), point: point(0.0823, true) },
+            EventLogEntry {
+                t: 0.0123,
+                name: "sensor".into(),
+                point: point(0.0123, true),
+            },
+            EventLogEntry {
+                t: 0.0823,
+                name: "brake".into(),
+                point: point(0.0823, true),
+            },
         ];
         (traj, events)
     }
@@ -240,7 +258,10 @@ mod tests {
         assert_eq!(s["properties"].as_object().unwrap().len(), 11);
         assert_eq!(s["properties"]["F_r"]["type"], "number");
         let e: serde_json::Value = serde_json::from_str(&event_schema()).unwrap();
-        assert_eq!(e["properties"]["point"]["properties"]["p1"]["type"], "number");
+        assert_eq!(
+            e["properties"]["point"]["properties"]["p1"]["type"],
+            "number"
+        );
     }
 
     #[test]
@@ -258,11 +279,24 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("run.mcap");
         write_mcap(&path, &traj, &events).unwrap();
-        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1, "no temp file left");
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "no temp file left"
+        );
         let bytes = std::fs::read(&path).unwrap();
-        let msgs: Vec<_> = mcap::MessageStream::new(&bytes).unwrap().map(|m| m.unwrap()).collect();
-        let state: Vec<_> = msgs.iter().filter(|m| m.channel.topic == "/state").collect();
-        let ev: Vec<_> = msgs.iter().filter(|m| m.channel.topic == "/events").collect();
+        let msgs: Vec<_> = mcap::MessageStream::new(&bytes)
+            .unwrap()
+            .map(|m| m.unwrap())
+            .collect();
+        let state: Vec<_> = msgs
+            .iter()
+            .filter(|m| m.channel.topic == "/state")
+            .collect();
+        let ev: Vec<_> = msgs
+            .iter()
+            .filter(|m| m.channel.topic == "/events")
+            .collect();
         assert_eq!(state.len(), 50);
         assert_eq!(ev.len(), 2);
         let schema = state[0].channel.schema.as_ref().unwrap();
@@ -281,7 +315,9 @@ mod tests {
         assert_eq!(ev[1].log_time, 82_300_000);
 
         // Indexed, with statistics (Foxglove seeks with these).
-        let summary = mcap::Summary::read(&bytes).unwrap().expect("summary section");
+        let summary = mcap::Summary::read(&bytes)
+            .unwrap()
+            .expect("summary section");
         let stats = summary.stats.expect("statistics");
         assert_eq!(stats.message_count, 52);
         assert_eq!(stats.channel_count, 2);
