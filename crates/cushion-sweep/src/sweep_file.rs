@@ -377,8 +377,17 @@ impl SweepFile {
     /// Parse sweep text; `path` locates the base scene (relative to its folder).
     pub fn from_str_at(text: &str, path: &Path) -> Result<SweepFile, String> {
         let doc: toml::Table = text.parse().map_err(|e: toml::de::Error| {
-            // toml's message already names line and column.
-            e.to_string().trim_end().to_string()
+            // One line: "line L, column C: what".
+            let msg = e.message().trim().replace('\n', "; ");
+            match e.span() {
+                Some(span) => {
+                    let before = &text[..span.start.min(text.len())];
+                    let line = before.matches('\n').count() + 1;
+                    let col = before.len() - before.rfind('\n').map(|i| i + 1).unwrap_or(0) + 1;
+                    format!("TOML syntax error at line {line}, column {col}: {msg}")
+                }
+                None => format!("TOML syntax error: {msg}"),
+            }
         })?;
         check_keys(&doc, &["name", "scene", "set", "sampling", "axis", "output"], "the sweep file")?;
 
