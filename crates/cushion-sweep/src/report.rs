@@ -169,9 +169,12 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
         (&left, &rows.speed, "|object final velocity| [m/s]", "Object final speed", 2usize),
         (&right, &rows.force, "|peak robot force| [N]", "Peak robot force", 0usize),
     ] {
-        // Per module and group: (min, median, max).
-        let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64)>> = BTreeMap::new();
-        for m in &modules {
+        // Per module and group: (x, min, median, max, lower quartile, upper quartile).
+        let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64, f64, f64)>> = BTreeMap::new();
+        // Modules side by side around each group's dead time, so their bars do not overlap.
+        let gap = if centres.len() > 1 { (centres[1] - centres[0]) * 1e3 } else { 10.0 };
+        let dodge = |k: usize| (k as f64 - (modules.len() as f64 - 1.0) / 2.0) * gap * 0.18;
+        for (k, m) in modules.iter().enumerate() {
             let mut per: Vec<Vec<f64>> = vec![Vec::new(); centres.len()];
             for i in 0..values.len() {
                 if &rows.module[i] == m && values[i].is_finite() && rows.dead_time[i].is_finite() {
@@ -185,7 +188,10 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
                 .map(|(g, v)| {
                     let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
                     let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    (centres[g] * 1e3, lo, median(v), hi)
+                    let md = median(v); // sorts v
+                    let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize];
+                    let x = centres[g] * 1e3 + if several { dodge(k) } else { 0.0 };
+                    (x, lo, md, hi, q(0.25), q(0.75))
                 })
                 .collect();
             stats.insert(m.as_str(), s);
@@ -204,7 +210,7 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
         let pad = ((x1 - x0) * 0.05).max(1.0);
         let mut chart = ChartBuilder::on(area)
             .caption(
-                if several { format!("{caption} (median, bar = min..max)") } else { caption.to_string() },
+                if several { format!("{caption} (median; bars: quartiles, min..max)") } else { caption.to_string() },
                 ("sans-serif", 20),
             )
             .margin(15)
@@ -225,15 +231,18 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
         for (m, s) in &stats {
             let color = module_color(m);
             if several {
-                chart.draw_series(s.iter().map(|(x, lo, _, hi)| {
-                    PathElement::new(vec![(*x, *lo), (*x, *hi)], color.mix(0.45).stroke_width(3))
+                chart.draw_series(s.iter().map(|(x, lo, _, hi, _, _)| {
+                    PathElement::new(vec![(*x, *lo), (*x, *hi)], color.mix(0.5).stroke_width(1))
+                }))?;
+                chart.draw_series(s.iter().map(|(x, _, _, _, q1, q3)| {
+                    PathElement::new(vec![(*x, *q1), (*x, *q3)], color.mix(0.55).stroke_width(6))
                 }))?;
             }
             chart
-                .draw_series(LineSeries::new(s.iter().map(|(x, _, md, _)| (*x, *md)), color.stroke_width(2)))?
+                .draw_series(LineSeries::new(s.iter().map(|t| (t.0, t.2)), color.stroke_width(2)))?
                 .label(m.to_string())
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3)));
-            chart.draw_series(s.iter().map(|(x, _, md, _)| Circle::new((*x, *md), 4, color.filled())))?;
+            chart.draw_series(s.iter().map(|t| Circle::new((t.0, t.2), 4, color.filled())))?;
         }
         chart
             .configure_series_labels()
@@ -362,10 +371,11 @@ fn heatmap(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
             .margin_right(5)
             .y_label_area_size(50)
             .build_cartesian_2d(0.0..1.0, lo..(lo + span))?;
+        let digits = if span >= 20.0 { 0 } else if span >= 2.0 { 1 } else if span >= 0.2 { 2 } else { 3 };
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
-            .y_label_formatter(&|v| format!("{v:.3}"))
+            .y_label_formatter(&|v| format!("{v:.digits$}"))
             .label_style(("sans-serif", 12))
             .draw()?;
         let steps = 64;
