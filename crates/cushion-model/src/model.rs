@@ -171,6 +171,10 @@ pub struct Eval {
     pub p_plane: f64,
 }
 
+/// Penetration (m) at which a contact begins; it ends at zero (see `event_value`). Its force
+/// there, `k 1e-21`, is below 1e-15 N for the stiffnesses of the paper.
+const CONTACT_HYSTERESIS: f64 = 1e-14;
+
 const EV_SENSOR: u8 = 0;
 const EV_OBJECT: u8 = 1;
 const EV_FWD: u8 = 2;
@@ -510,12 +514,16 @@ impl Model {
                     x_r - tool(y).0 - self.p.s_sensor
                 }
             }
+            // Contacts: penetration `d`, with a hysteresis of `CONTACT_HYSTERESIS` while off
+            // (a contact begins at d = 1e-14 m and ends at d = 0), so that right after either
+            // event the function is strictly on its side and a touch that follows at once is
+            // found (an event function that starts a step exactly at zero does not fire).
             EV_OBJECT => {
                 let j = self.layout.object.unwrap_or(0);
-                tool(y).0 - y[j]
+                tool(y).0 - y[j] - if r.obj_contact { 0.0 } else { CONTACT_HYSTERESIS }
             }
-            EV_FWD => tool(y).0 - x_r,
-            EV_BACK => x_r - tool(y).0 - self.p.stroke,
+            EV_FWD => tool(y).0 - x_r - if r.fwd { 0.0 } else { CONTACT_HYSTERESIS },
+            EV_BACK => x_r - tool(y).0 - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS },
             EV_TOOL_STICK => {
                 if r.tool_stuck {
                     let e = self.eval(t, y, seg, r);
@@ -538,9 +546,12 @@ impl Model {
                 let s = x_r - tool(y).0;
                 let sd = v_r - tool(y).1;
                 let p = &self.p;
+                // the same hysteresis idea: begins at 0, ends at +1e-12 (p10 + |p_cav|)
+                let hyst = if r.cavitating { 1e-12 * (p.p10 + p.p_cav.unwrap_or(0.0).abs()) } else { 0.0 };
                 physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s)
                     + physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, sd)
                     - p.p_cav.unwrap_or(0.0)
+                    - hyst
             }
             _ => 1.0,
         }
@@ -943,6 +954,10 @@ impl<const N: usize> OdeSystem<N> for Model {
     fn event_direction(&self, i: usize) -> Direction {
         match self.events.get(i).copied() {
             Some(EV_SENSOR) => Direction::Rising,
+            Some(EV_OBJECT) => if self.regime.obj_contact { Direction::Falling } else { Direction::Rising },
+            Some(EV_FWD) => if self.regime.fwd { Direction::Falling } else { Direction::Rising },
+            Some(EV_BACK) => if self.regime.back { Direction::Falling } else { Direction::Rising },
+            Some(EV_CAVITATION) => if self.regime.cavitating { Direction::Rising } else { Direction::Falling },
             _ => Direction::Both,
         }
     }

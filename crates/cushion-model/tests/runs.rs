@@ -489,3 +489,19 @@ fn cavitation_bounds_the_chamber_pressure() {
     let off = run(&with(s, &[("hydraulic.cavitation", "false")])).summary;
     assert_same(&idle, &off, 1e-7, "idle cavitation");
 }
+
+/// A contact that ends with its penetration located at exactly zero, followed at once by a new
+/// touch: found (contact events have a 1e-14 m hysteresis), so the tool does not sink into the
+/// back stop unnoticed. Found by the energy ledger (residual 9e-3 before the fix).
+#[test]
+fn a_touch_right_after_a_contact_end_is_found() {
+    let s = with(
+        Scene::default(),
+        &[("module", "bistable"), ("robot.dead_time", "0.06093008942268299"), ("object.mass", "0.5569860549020191")],
+    );
+    let loose = run(&s).summary;
+    let ref_ = run(&tight(s)).summary;
+    assert_eq!(loose.back_stop_impacts, ref_.back_stop_impacts);
+    assert!(loose.energy_residual.unwrap() < 1e-4, "{:?}", loose.energy_residual);
+    assert!(close(loose.max_stroke, ref_.max_stroke, 1e-5, 0.0), "{} vs {}", loose.max_stroke, ref_.max_stroke);
+}
