@@ -36,18 +36,6 @@ fn module_color(m: &str) -> RGBColor {
     }
 }
 
-#[derive(Default)]
-struct Rows {
-    module: Vec<String>,
-    dead_time: Vec<f64>,
-    gas: Vec<f64>,
-    orifice: Vec<f64>,
-    speed: Vec<f64>,
-    force: Vec<f64>,
-    left_out: usize,
-    total: usize,
-}
-
 fn f64_col(b: &RecordBatch, name: &str) -> Option<Float64Array> {
     b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<Float64Array>().cloned())
 }
@@ -56,14 +44,129 @@ fn str_col(b: &RecordBatch, name: &str) -> Option<StringArray> {
     b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<StringArray>().cloned())
 }
 
-fn load(dir: &Path) -> Result<(Rows, bool, bool), String> {
-    let base_module = std::fs::read(dir.join("provenance.json"))
-        .ok()
-        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
-        .and_then(|p| p["base_scene"]["module"].as_str().map(|s| s.to_string()))
-        .unwrap_or_else(|| "hydraulic".to_string());
-    let mut rows = Rows::default();
-    let (mut has_dt, mut has_map) = (false, false);
+/// At most this many values per chart are kept for medians and quartiles (a deterministic
+/// every-k-th subsample beyond it); minima, maxima and the heat map use every run. Memory stays
+/// flat in the number of runs.
+const SAMPLE_CAP: usize = 40_000;
+
+/// One axis seen in a first pass: its distinct values (up to a cap) and range.
+#[derive(Clone)]
+struct AxisScan {
+    distinct: Vec<f64>,
+    overflow: bool,
+    min: f64,
+    max: f64,
+}
+
+impl AxisScan {
+    fn new() -> AxisScan {
+        AxisScan { distinct: Vec::new(), overflow: false, min: f64::INFINITY, max: f64::NEG_INFINITY }
+    }
+    fn add(&mut self, v: f64, cap: usize) {
+        if !v.is_finite() {
+            return;
+        }
+        self.min = self.min.min(v);
+        self.max = self.max.max(v);
+        if !self.overflow {
+            if let Err(i) = self.distinct.binary_search_by(|d| d.total_cmp(&v)) {
+                self.distinct.insert(i, v);
+                if self.distinct.len() > cap {
+                    self.overflow = true;
+                    self.distinct.clear();
+                }
+            }
+        }
+    }
+    /// The groups: the distinct values when at most `cap`, else `bins` equal bins (in log when
+    /// `log`).
+    fn grouping(&self, bins: usize, log: bool) -> Grouping {
+        if !self.overflow {
+            return Grouping { centres: self.distinct.clone(), exact: true, lo: 0.0, w: 1.0, log };
+        }
+        let tr = |v: f64| if log { v.ln() } else { v };
+        let (lo, hi) = (tr(self.min), tr(self.max));
+        let w = ((hi - lo) / bins as f64).max(f64::MIN_POSITIVE);
+        let centres = (0..bins)
+            .map(|i| {
+                let c = lo + (i as f64 + 0.5) * w;
+                if log { c.exp() } else { c }
+            })
+            .collect();
+        Grouping { centres, exact: false, lo, w, log }
+    }
+}
+
+struct Grouping {
+    centres: Vec<f64>,
+    exact: bool,
+    lo: f64,
+    w: f64,
+    log: bool,
+}
+
+impl Grouping {
+    fn index(&self, v: f64) -> Option<usize> {
+        if !v.is_finite() || self.centres.is_empty() {
+            return None;
+        }
+        if self.exact {
+            return self.centres.binary_search_by(|d| d.total_cmp(&v)).ok();
+        }
+        let t = if self.log { v.ln() } else { v };
+        Some((((t - self.lo) / self.w).max(0.0) as usize).min(self.centres.len() - 1))
+    }
+}
+
+/// Min, max and a bounded sample of one group's values.
+#[derive(Clone)]
+struct Acc {
+    min: f64,
+    max: f64,
+    sample: Vec<f64>,
+}
+
+impl Acc {
+    fn new() -> Acc {
+        Acc { min: f64::INFINITY, max: f64::NEG_INFINITY, sample: Vec::new() }
+    }
+    fn add(&mut self, v: f64, keep: bool) {
+        if v.is_finite() {
+            self.min = self.min.min(v);
+            self.max = self.max.max(v);
+            if keep {
+                self.sample.push(v);
+            }
+        }
+    }
+    fn is_empty(&self) -> bool {
+        self.min > self.max
+    }
+}
+
+/// What the charts need, gathered in two streaming passes over `summary.parquet`.
+struct Data {
+    total: usize,
+    ok: usize,
+    modules: Vec<String>,
+    has_dt: bool,
+    has_map: bool,
+    dt: Grouping,
+    /// module -> per dead-time group: (speed, force).
+    sf: BTreeMap<String, Vec<(Acc, Acc)>>,
+    gas: Grouping,
+    orifice: Grouping,
+    /// Hydraulic runs: per (gas, orifice) cell, the largest |F_r| and object speed.
+    cells: Vec<Vec<(f64, f64)>>,
+    hydraulic_runs: usize,
+}
+
+fn for_each_row(
+    dir: &Path,
+    base_module: &str,
+    mut f: impl FnMut(&str, [f64; 5]),
+) -> Result<(usize, bool, bool), String> {
+    let (mut total, mut has_dt, mut has_map) = (0, false, false);
     for b in read_parquet(&dir.join("summary.parquet")).map_err(|e| e.to_string())? {
         let b = b.map_err(|e| e.to_string())?;
         let status = str_col(&b, "status").ok_or("no status column")?;
@@ -75,70 +178,94 @@ fn load(dir: &Path) -> Result<(Rows, bool, bool), String> {
         has_map = gas.is_some() && ori.is_some();
         let speed = f64_col(&b, "object_final_velocity").ok_or("no object_final_velocity")?;
         let force = f64_col(&b, "peak_robot_force").ok_or("no peak_robot_force")?;
+        let get = |c: &Option<Float64Array>, i: usize| match c {
+            Some(c) if !c.is_null(i) => c.value(i),
+            _ => f64::NAN,
+        };
         for i in 0..b.num_rows() {
-            rows.total += 1;
+            total += 1;
             if status.value(i) != "ok" || force.is_null(i) {
-                rows.left_out += 1;
                 continue;
             }
-            rows.module.push(module.as_ref().map(|m| m.value(i).to_string()).unwrap_or_else(|| base_module.clone()));
-            rows.dead_time.push(dt.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
-            rows.gas.push(gas.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
-            rows.orifice.push(ori.as_ref().map(|c| c.value(i)).unwrap_or(f64::NAN));
-            rows.speed.push(if speed.is_null(i) { f64::NAN } else { speed.value(i).abs() });
-            rows.force.push(force.value(i).abs());
+            let m = module.as_ref().map(|m| m.value(i)).unwrap_or(base_module);
+            let sp = if speed.is_null(i) { f64::NAN } else { speed.value(i).abs() };
+            f(m, [get(&dt, i), get(&gas, i), get(&ori, i), sp, force.value(i).abs()]);
         }
     }
-    Ok((rows, has_dt, has_map))
+    Ok((total, has_dt, has_map))
+}
+
+fn load(dir: &Path) -> Result<Data, String> {
+    let base_module = std::fs::read(dir.join("provenance.json"))
+        .ok()
+        .and_then(|b| serde_json::from_slice::<serde_json::Value>(&b).ok())
+        .and_then(|p| p["base_scene"]["module"].as_str().map(|s| s.to_string()))
+        .unwrap_or_else(|| "hydraulic".to_string());
+    // Pass 1: modules, ranges and distinct values.
+    let (mut sdt, mut sgas, mut sori) = (AxisScan::new(), AxisScan::new(), AxisScan::new());
+    let mut modules: Vec<String> = Vec::new();
+    let mut ok = 0usize;
+    let (total, has_dt, has_map) = for_each_row(dir, &base_module, |m, v| {
+        ok += 1;
+        if !modules.iter().any(|x| x == m) {
+            modules.push(m.to_string());
+        }
+        sdt.add(v[0], 25);
+        if m == "hydraulic" {
+            sgas.add(v[1], 30);
+            sori.add(v[2], 30);
+        }
+    })?;
+    modules.sort();
+    let dt = sdt.grouping(20, false);
+    let gas = sgas.grouping(16, true);
+    let orifice = sori.grouping(12, false);
+    // Pass 2: the groups' values.
+    let every = ok.div_ceil(SAMPLE_CAP).max(1);
+    let mut sf: BTreeMap<String, Vec<(Acc, Acc)>> = modules
+        .iter()
+        .map(|m| (m.clone(), vec![(Acc::new(), Acc::new()); dt.centres.len()]))
+        .collect();
+    let mut cells = vec![vec![(f64::NAN, f64::NAN); orifice.centres.len()]; gas.centres.len()];
+    let mut hydraulic_runs = 0usize;
+    let mut n = 0usize;
+    for_each_row(dir, &base_module, |m, v| {
+        let keep = n % every == 0;
+        n += 1;
+        if let (Some(g), Some(groups)) = (dt.index(v[0]), sf.get_mut(m)) {
+            groups[g].0.add(v[3], keep);
+            groups[g].1.add(v[4], keep);
+        }
+        if m == "hydraulic" {
+            if let (Some(a), Some(b)) = (gas.index(v[1]), orifice.index(v[2])) {
+                hydraulic_runs += 1;
+                let c = &mut cells[a][b];
+                let mx = |old: f64, new: f64| if old.is_nan() { new } else if new.is_nan() { old } else { old.max(new) };
+                *c = (mx(c.0, v[4]), mx(c.1, v[3]));
+            }
+        }
+    })?;
+    Ok(Data { total, ok, modules, has_dt, has_map, dt, sf, gas, orifice, cells, hydraulic_runs })
 }
 
 /// Write the report charts that the sweep's axes allow; returns the files written.
 pub fn write_report(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
-    let (rows, has_dt, has_map) = load(dir)?;
+    let data = load(dir)?;
     let mut written = Vec::new();
     for f in [SPEED_FORCE_SVG, HEATMAP_SVG] {
         let _ = std::fs::remove_file(dir.join(f));
     }
-    if has_dt && !rows.force.is_empty() {
+    if data.has_dt && data.ok > 0 && !data.dt.centres.is_empty() {
         let p = dir.join(SPEED_FORCE_SVG);
-        speed_force(&p, &rows).map_err(|e| format!("{}: {e}", p.display()))?;
+        speed_force(&p, &data).map_err(|e| format!("{}: {e}", p.display()))?;
         written.push(p);
     }
-    if has_map && rows.module.iter().any(|m| m == "hydraulic") {
+    if data.has_map && data.hydraulic_runs > 0 {
         let p = dir.join(HEATMAP_SVG);
-        heatmap(&p, &rows).map_err(|e| format!("{}: {e}", p.display()))?;
+        heatmap(&p, &data).map_err(|e| format!("{}: {e}", p.display()))?;
         written.push(p);
     }
     Ok(written)
-}
-
-/// Group keys: the exact values when few, else equal bins. Returns (centre of each group, group
-/// index of each value).
-fn groups(values: &[f64], max_exact: usize, bins: usize, log: bool) -> (Vec<f64>, Vec<usize>) {
-    let mut distinct: Vec<f64> = values.iter().copied().filter(|v| v.is_finite()).collect();
-    distinct.sort_by(|a, b| a.total_cmp(b));
-    distinct.dedup();
-    if distinct.len() <= max_exact {
-        let idx = values
-            .iter()
-            .map(|v| distinct.binary_search_by(|d| d.total_cmp(v)).unwrap_or(0))
-            .collect();
-        return (distinct, idx);
-    }
-    let tr = |v: f64| if log { v.ln() } else { v };
-    let (lo, hi) = (tr(distinct[0]), tr(*distinct.last().expect("non-empty")));
-    let w = (hi - lo) / bins as f64;
-    let centres = (0..bins)
-        .map(|i| {
-            let c = lo + (i as f64 + 0.5) * w;
-            if log { c.exp() } else { c }
-        })
-        .collect();
-    let idx = values
-        .iter()
-        .map(|v| (((tr(*v) - lo) / w) as usize).min(bins - 1))
-        .collect();
-    (centres, idx)
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -149,25 +276,24 @@ fn median(v: &mut [f64]) -> f64 {
 
 type Draw<E> = Result<(), DrawingAreaErrorKind<E>>;
 
-fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
+fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
     let root = SVGBackend::new(path, (1200, 520)).into_drawing_area();
     root.fill(&WHITE)?;
-    let n_ok = rows.force.len();
+    let left_out = d.total - d.ok;
     let title = format!(
-        "Object final speed and peak robot force against dead time ({n_ok} runs{})",
-        if rows.left_out > 0 { format!(", {} failed runs left out", rows.left_out) } else { String::new() }
+        "Object final speed and peak robot force against dead time ({} runs{})",
+        d.ok,
+        if left_out > 0 { format!(", {left_out} failed runs left out") } else { String::new() }
     );
     let (top, body) = root.split_vertically(50);
     top.titled(&title, ("sans-serif", 24))?;
     let (left, right) = body.split_horizontally(600);
-    let (centres, gi) = groups(&rows.dead_time, 25, 20, false);
-    let mut modules: Vec<String> = rows.module.clone();
-    modules.sort();
-    modules.dedup();
-    let several = centres.len() < rows.force.len() / modules.len().max(1);
-    for (area, values, ylabel, caption, ydigits) in [
-        (&left, &rows.speed, "|object final velocity| [m/s]", "Object final speed", 2usize),
-        (&right, &rows.force, "|peak robot force| [N]", "Peak robot force", 0usize),
+    let centres = &d.dt.centres;
+    let modules = &d.modules;
+    let several = centres.len() < d.ok / modules.len().max(1);
+    for (area, which, ylabel, caption, ydigits) in [
+        (&left, 0usize, "|object final velocity| [m/s]", "Object final speed", 2usize),
+        (&right, 1usize, "|peak robot force| [N]", "Peak robot force", 0usize),
     ] {
         // Per module and group: (x, min, median, max, lower quartile, upper quartile).
         let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64, f64, f64)>> = BTreeMap::new();
@@ -175,23 +301,20 @@ fn speed_force(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
         let gap = if centres.len() > 1 { (centres[1] - centres[0]) * 1e3 } else { 10.0 };
         let dodge = |k: usize| (k as f64 - (modules.len() as f64 - 1.0) / 2.0) * gap * 0.18;
         for (k, m) in modules.iter().enumerate() {
-            let mut per: Vec<Vec<f64>> = vec![Vec::new(); centres.len()];
-            for i in 0..values.len() {
-                if &rows.module[i] == m && values[i].is_finite() && rows.dead_time[i].is_finite() {
-                    per[gi[i]].push(values[i]);
-                }
-            }
-            let s = per
-                .iter_mut()
+            let s = d.sf[m]
+                .iter()
                 .enumerate()
-                .filter(|(_, v)| !v.is_empty())
-                .map(|(g, v)| {
-                    let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-                    let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                    let md = median(v); // sorts v
+                .map(|(g, accs)| (g, if which == 0 { &accs.0 } else { &accs.1 }))
+                .filter(|(_, a)| !a.is_empty())
+                .map(|(g, a)| {
+                    let mut v = a.sample.clone();
+                    if v.is_empty() {
+                        v.push(0.5 * (a.min + a.max));
+                    }
+                    let md = median(&mut v); // sorts v
                     let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize];
                     let x = centres[g] * 1e3 + if several { dodge(k) } else { 0.0 };
-                    (x, lo, md, hi, q(0.25), q(0.75))
+                    (x, a.min, md, a.max, q(0.25), q(0.75))
                 })
                 .collect();
             stats.insert(m.as_str(), s);
@@ -273,19 +396,15 @@ fn viridis(u: f64) -> RGBColor {
     RGBColor(mix(a.0, b.0), mix(a.1, b.1), mix(a.2, b.2))
 }
 
-fn heatmap(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
-    let hyd: Vec<usize> = (0..rows.module.len()).filter(|i| rows.module[*i] == "hydraulic").collect();
-    let gas: Vec<f64> = hyd.iter().map(|i| rows.gas[*i]).collect();
-    let ori: Vec<f64> = hyd.iter().map(|i| rows.orifice[*i]).collect();
-    let (gc, gi) = groups(&gas, 30, 16, true);
-    let (oc, oi) = groups(&ori, 30, 12, false);
+fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
+    let (gc, oc) = (&d.gas.centres, &d.orifice.centres);
     let root = SVGBackend::new(path, (1300, 580)).into_drawing_area();
     root.fill(&WHITE)?;
     let (top, body) = root.split_vertically(50);
     top.titled(
         &format!(
             "Hydraulic module: worst case over the other axes, per gas pressure and orifice radius ({} runs)",
-            hyd.len()
+            d.hydraulic_runs
         ),
         ("sans-serif", 22),
     )?;
@@ -303,20 +422,17 @@ fn heatmap(path: &Path, rows: &Rows) -> Draw<std::io::Error> {
         e.push(t[t.len() - 1] + (t[t.len() - 1] - t[t.len() - 2]) / 2.0);
         e
     };
-    let gx = edges(&gc, true);
-    let oy = edges(&oc, false);
-    for (area, metric, label) in [
-        (&left, &rows.force, "max |peak robot force| [N]"),
-        (&right, &rows.speed, "max |object final velocity| [m/s]"),
+    let gx = edges(gc, true);
+    let oy = edges(oc, false);
+    for (area, which, label) in [
+        (&left, 0usize, "max |peak robot force| [N]"),
+        (&right, 1usize, "max |object final velocity| [m/s]"),
     ] {
-        let mut cell = vec![vec![f64::NAN; oc.len()]; gc.len()];
-        for (j, i) in hyd.iter().enumerate() {
-            let v = metric[*i];
-            if v.is_finite() {
-                let c = &mut cell[gi[j]][oi[j]];
-                *c = if c.is_nan() { v } else { c.max(v) };
-            }
-        }
+        let cell: Vec<Vec<f64>> = d
+            .cells
+            .iter()
+            .map(|col| col.iter().map(|c| if which == 0 { c.0 } else { c.1 }).collect())
+            .collect();
         let vals: Vec<f64> = cell.iter().flatten().copied().filter(|v| v.is_finite()).collect();
         let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
