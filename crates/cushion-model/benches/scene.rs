@@ -7,7 +7,8 @@ use std::hint::black_box;
 use std::time::{Duration, Instant};
 
 fn scene(name: &str) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../sweeps/scenes/{name}.toml"));
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("../../sweeps/scenes/{name}.toml"));
     Scene::from_file(&p).expect("shipped scene")
 }
 
@@ -58,27 +59,74 @@ fn row(label: &str, s: &Scene) {
 }
 
 fn main() {
-    println!("cushion-model: one run per scene, rtol 1e-6, atol 1e-9, in-process (median of 7 batches)");
+    println!(
+        "cushion-model: one run per scene, rtol 1e-6, atol 1e-9, in-process (median of 7 batches)"
+    );
     println!(
         "{:<44} {:>3} {:>9} {:>7} {:>6} {:>5} {:>8} {:>10}",
         "scene", "N", "us/run", "rhs", "steps", "rej", "ns/rhs", "v_p(end)"
     );
-    for name in ["paper-hydraulic-dt70", "paper-hydraulic-dt10", "paper-bistable-dt70", "paper-bistable-dt10", "paper-rigid"] {
+    for name in [
+        "paper-hydraulic-dt70",
+        "paper-hydraulic-dt10",
+        "paper-bistable-dt70",
+        "paper-bistable-dt10",
+        "paper-rigid",
+    ] {
         row(name, &scene(name));
     }
     println!();
     println!("optional parts absent vs present (paper-hydraulic-dt70 unless named)");
     let h = scene("paper-hydraulic-dt70");
-    row("ledger off (tool + object: 4 states)", &with(h.clone(), &[("energy.ledger", "false")]));
+    row(
+        "ledger off (tool + object: 4 states)",
+        &with(h.clone(), &[("energy.ledger", "false")]),
+    );
     row("ledger on (default: 8 states)", &h);
-    row("ledger on + idle plane friction (far object)", &with(h.clone(), &[("object.gap", "1.0"), ("object.plane_friction", "0.5")]));
-    row("far object, no plane friction", &with(h.clone(), &[("object.gap", "1.0")]));
-    row("no object, ledger off (2 states)", &with(h.clone(), &[("object.enabled", "false"), ("energy.ledger", "false")]));
-    row("dry friction 2 N (stick-slip events)", &with(h.clone(), &[("tool.dry_friction", "2")]));
-    row("plane friction 0.5 (stick phase)", &with(h.clone(), &[("object.plane_friction", "0.5")]));
-    row("early end off, t_end 1.5 s", &with(h.clone(), &[("t_end", "1.5"), ("solver.early_end", "false")]));
-    row("early end on, t_end 1.5 s", &with(h.clone(), &[("t_end", "1.5")]));
+    row(
+        "ledger on + idle plane friction (far object)",
+        &with(
+            h.clone(),
+            &[("object.gap", "1.0"), ("object.plane_friction", "0.5")],
+        ),
+    );
+    row(
+        "far object, no plane friction",
+        &with(h.clone(), &[("object.gap", "1.0")]),
+    );
+    row(
+        "no object, ledger off (2 states)",
+        &with(
+            h.clone(),
+            &[("object.enabled", "false"), ("energy.ledger", "false")],
+        ),
+    );
+    row(
+        "dry friction 2 N (stick-slip events)",
+        &with(h.clone(), &[("tool.dry_friction", "2")]),
+    );
+    row(
+        "plane friction 0.5 (stick phase)",
+        &with(h.clone(), &[("object.plane_friction", "0.5")]),
+    );
+    row(
+        "early end off, t_end 1.5 s",
+        &with(
+            h.clone(),
+            &[("t_end", "1.5"), ("solver.early_end", "false")],
+        ),
+    );
+    row(
+        "early end on, t_end 1.5 s",
+        &with(h.clone(), &[("t_end", "1.5")]),
+    );
     let rg = scene("paper-rigid");
-    row("rigid, ledger off (2 states)", &with(rg.clone(), &[("energy.ledger", "false")]));
-    row("rigid, early end off", &with(rg, &[("solver.early_end", "false")]));
+    row(
+        "rigid, ledger off (2 states)",
+        &with(rg.clone(), &[("energy.ledger", "false")]),
+    );
+    row(
+        "rigid, early end off",
+        &with(rg, &[("solver.early_end", "false")]),
+    );
 }

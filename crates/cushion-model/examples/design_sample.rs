@@ -1,10 +1,15 @@
 //! Run random scenes of issue 4's design space (dead time 0-0.1 s, gas 300 Pa-100 kPa log,
 //! orifice 2-12 mm, object mass 0.05-1 kg, hydraulic and bistable) and report statuses,
 //! cost and the worst energy residual: `design_sample [N]`.
+#![allow(clippy::field_reassign_with_default)]
+
 use cushion_model::{simulate, RunOptions, RunStatus, Scene};
 
 fn main() {
-    let n: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(2000);
+    let n: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(2000);
     let mut state = 0x2545F4914F6CDD1Du64;
     let mut rnd = move || {
         state ^= state << 13;
@@ -19,7 +24,11 @@ fn main() {
     let t0 = std::time::Instant::now();
     for i in 0..n {
         let mut s = Scene::default();
-        s.module = if i % 2 == 0 { cushion_model::Module::Hydraulic } else { cushion_model::Module::Bistable };
+        s.module = if i % 2 == 0 {
+            cushion_model::Module::Hydraulic
+        } else {
+            cushion_model::Module::Bistable
+        };
         s.robot.dead_time = 0.1 * rnd();
         s.hydraulic.gas_pressure = (300f64.ln() + (1e5f64.ln() - 300f64.ln()) * rnd()).exp();
         s.hydraulic.orifice_radius = 0.002 + 0.010 * rnd();
@@ -49,7 +58,11 @@ fn main() {
         }
     }
     let dt = t0.elapsed().as_secs_f64();
-    println!("{n} runs, {:.1} us/run, {:.0} rhs/run on average", dt / n as f64 * 1e6, rhs_total as f64 / n as f64);
+    println!(
+        "{n} runs, {:.1} us/run, {:.0} rhs/run on average",
+        dt / n as f64 * 1e6,
+        rhs_total as f64 / n as f64
+    );
     println!("statuses: {counts:?}");
     println!("worst energy residual {:.2e} ({})", worst.0, worst.1);
     println!("most rhs evaluations {} ({})", max_rhs.0, max_rhs.1);

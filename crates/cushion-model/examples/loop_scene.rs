@@ -11,7 +11,9 @@ fn main() {
     let t = std::time::Instant::now();
     let mut acc = 0.0;
     for _ in 0..n {
-        acc += simulate(&scene, &RunOptions::default()).summary.robot_impulse;
+        acc += simulate(&scene, &RunOptions::default())
+            .summary
+            .robot_impulse;
     }
     let dt = t.elapsed().as_secs_f64() / n as f64;
     println!("{:.1} us/run ({acc})", dt * 1e6);

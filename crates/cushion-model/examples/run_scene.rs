@@ -22,7 +22,10 @@ fn main() {
     }
     let r = simulate(&scene, &RunOptions::default());
     for e in &r.events {
-        println!("{:>10.6} {:<22} s={:.6} v_t={:.4} v_p={:.4} F_r={:.3}", e.t, e.name, e.point.s, e.point.v_t, e.point.v_p, e.point.f_r);
+        println!(
+            "{:>10.6} {:<22} s={:.6} v_t={:.4} v_p={:.4} F_r={:.3}",
+            e.t, e.name, e.point.s, e.point.v_t, e.point.v_p, e.point.f_r
+        );
     }
     println!("{}", serde_json::to_string_pretty(&r.summary).unwrap());
 }

@@ -6,7 +6,13 @@ fn main() {
         let (k, v) = arg.split_once('=').expect("KEY=VALUE");
         scene.set_from_str(k, v).expect("valid");
     }
-    let r = simulate(&scene, &RunOptions { trajectory: true, sample_interval: None });
+    let r = simulate(
+        &scene,
+        &RunOptions {
+            trajectory: true,
+            sample_interval: None,
+        },
+    );
     let pts = r.trajectory.unwrap().points;
     let mut bins = vec![0; (scene.t_end / 0.01).ceil() as usize + 1];
     for p in &pts {

@@ -77,9 +77,17 @@ pub enum ConfigError {
     #[error("unknown key `{key}` (allowed: {allowed})")]
     UnknownKey { key: String, allowed: String },
     #[error("`{key}` = {value}: wrong type, expected {expected}")]
-    WrongType { key: String, value: String, expected: String },
+    WrongType {
+        key: String,
+        value: String,
+        expected: String,
+    },
     #[error("`{key}` = {value}: {allowed}")]
-    InvalidValue { key: String, value: String, allowed: String },
+    InvalidValue {
+        key: String,
+        value: String,
+        allowed: String,
+    },
     #[error("{path}: {message}")]
     File { path: String, message: String },
 }
@@ -259,7 +267,11 @@ impl Default for Scene {
                 contact_damping: 1.35e6,
                 plane_friction: 0.0,
             },
-            stops: Stops { stroke: 0.023, stiffness: 0.6e6, damping: 1.35e6 },
+            stops: Stops {
+                stroke: 0.023,
+                stiffness: 0.6e6,
+                damping: 1.35e6,
+            },
             hydraulic: Hydraulic {
                 piston_radius: 0.020,
                 orifice_radius: 0.008,
@@ -309,14 +321,22 @@ fn format_float(f: f64) -> String {
     if f.is_nan() {
         "nan".into()
     } else if f.is_infinite() {
-        if f > 0.0 { "inf".into() } else { "-inf".into() }
+        if f > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        }
     } else {
         format!("{f}")
     }
 }
 
 fn wrong_type(key: &str, v: &toml::Value, expected: &str) -> ConfigError {
-    ConfigError::WrongType { key: key.into(), value: show(v), expected: expected.into() }
+    ConfigError::WrongType {
+        key: key.into(),
+        value: show(v),
+        expected: expected.into(),
+    }
 }
 
 impl KeyValue for f64 {
@@ -362,8 +382,20 @@ impl KeyValue for u64 {
     }
 }
 
-fn choice<T>(key: &str, v: &toml::Value, names: &[&str], parse: impl Fn(&str) -> Option<T>) -> Result<T, ConfigError> {
-    let expected = format!("one of {}", names.iter().map(|n| format!("\"{n}\"")).collect::<Vec<_>>().join(", "));
+fn choice<T>(
+    key: &str,
+    v: &toml::Value,
+    names: &[&str],
+    parse: impl Fn(&str) -> Option<T>,
+) -> Result<T, ConfigError> {
+    let expected = format!(
+        "one of {}",
+        names
+            .iter()
+            .map(|n| format!("\"{n}\""))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
     match v {
         toml::Value::String(s) => parse(s).ok_or_else(|| ConfigError::InvalidValue {
             key: key.into(),
@@ -376,7 +408,12 @@ fn choice<T>(key: &str, v: &toml::Value, names: &[&str], parse: impl Fn(&str) ->
 
 impl KeyValue for Module {
     fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
-        choice(key, v, &["hydraulic", "bistable", "rigid"], Module::from_name)
+        choice(
+            key,
+            v,
+            &["hydraulic", "bistable", "rigid"],
+            Module::from_name,
+        )
     }
     fn to_value(&self) -> toml::Value {
         toml::Value::String(self.name().into())
@@ -493,21 +530,41 @@ scene_keys! {
     "energy.ledger" => energy.ledger;
 }
 
-const SECTIONS: &[&str] = &["robot", "tool", "object", "stops", "hydraulic", "bistable", "solver", "energy"];
+const SECTIONS: &[&str] = &[
+    "robot",
+    "tool",
+    "object",
+    "stops",
+    "hydraulic",
+    "bistable",
+    "solver",
+    "energy",
+];
 
 fn unknown_key(key: &str) -> ConfigError {
     // Name the keys of the same section when the section is known, else every key.
     let section = key.split('.').next().unwrap_or("");
     let same: Vec<&str> = if key.contains('.') && SECTIONS.contains(&section) {
-        KEY_LIST.iter().copied().filter(|k| k.starts_with(&format!("{section}."))).collect()
+        KEY_LIST
+            .iter()
+            .copied()
+            .filter(|k| k.starts_with(&format!("{section}.")))
+            .collect()
     } else {
         KEY_LIST.to_vec()
     };
-    ConfigError::UnknownKey { key: key.into(), allowed: same.join(", ") }
+    ConfigError::UnknownKey {
+        key: key.into(),
+        allowed: same.join(", "),
+    }
 }
 
 fn invalid(key: &str, value: f64, allowed: impl Into<String>) -> ConfigError {
-    ConfigError::InvalidValue { key: key.into(), value: format_float(value), allowed: allowed.into() }
+    ConfigError::InvalidValue {
+        key: key.into(),
+        value: format_float(value),
+        allowed: allowed.into(),
+    }
 }
 
 /// Parse `text` as one TOML value (`1e-3`, `true`, `"x"`, `[1, 2]`); a bare word that is not
@@ -536,7 +593,10 @@ impl Scene {
                 let col = upto.len() - upto.rfind('\n').map(|i| i + 1).unwrap_or(0) + 1;
                 message = format!("line {line}, column {col}: {message}");
             }
-            ConfigError::File { path: "<scene>".into(), message }
+            ConfigError::File {
+                path: "<scene>".into(),
+                message,
+            }
         })?;
         let mut scene = Scene::default();
         scene.apply_table(&table)?;
@@ -566,8 +626,10 @@ impl Scene {
     /// Read and parse a scene file; errors name the path.
     pub fn from_file(path: &std::path::Path) -> Result<Scene, ConfigError> {
         let p = path.display().to_string();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| ConfigError::File { path: p.clone(), message: format!("cannot read scene file: {e}") })?;
+        let text = std::fs::read_to_string(path).map_err(|e| ConfigError::File {
+            path: p.clone(),
+            message: format!("cannot read scene file: {e}"),
+        })?;
         match Scene::from_toml_str(&text) {
             Err(ConfigError::File { message, .. }) => Err(ConfigError::File { path: p, message }),
             other => other,
@@ -611,8 +673,20 @@ impl Scene {
                 }
             }
         }
-        let pos = |key: &str, v: f64| if v > 0.0 { Ok(()) } else { Err(invalid(key, v, "must be > 0")) };
-        let nonneg = |key: &str, v: f64| if v >= 0.0 { Ok(()) } else { Err(invalid(key, v, "must be >= 0")) };
+        let pos = |key: &str, v: f64| {
+            if v > 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(key, v, "must be > 0"))
+            }
+        };
+        let nonneg = |key: &str, v: f64| {
+            if v >= 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(key, v, "must be >= 0"))
+            }
+        };
         pos("t_end", self.t_end)?;
         pos("robot.approach_speed", self.robot.approach_speed)?;
         pos("robot.brake_deceleration", self.robot.brake_deceleration)?;
@@ -635,7 +709,10 @@ impl Scene {
             return Err(invalid(
                 "tool.sensor_threshold",
                 ss,
-                format!("must lie inside the stroke, 0 < s_sensor < stops.stroke = {}", format_float(l)),
+                format!(
+                    "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
+                    format_float(l)
+                ),
             ));
         }
         let h = &self.hydraulic;
@@ -670,11 +747,14 @@ impl Scene {
         if !(k > 1.0 && k <= 2.0) {
             return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
         }
-        if !(h.cavitation_pressure < h.gas_pressure) {
+        if h.cavitation_pressure >= h.gas_pressure {
             return Err(invalid(
                 "hydraulic.cavitation_pressure",
                 h.cavitation_pressure,
-                format!("must be < hydraulic.gas_pressure = {}", format_float(h.gas_pressure)),
+                format!(
+                    "must be < hydraulic.gas_pressure = {}",
+                    format_float(h.gas_pressure)
+                ),
             ));
         }
         let b = &self.bistable;
@@ -685,7 +765,10 @@ impl Scene {
             return Err(invalid(
                 "bistable.offset",
                 b.offset,
-                format!("must lie in [0, bistable.apex_rise = {})", format_float(b.apex_rise)),
+                format!(
+                    "must lie in [0, bistable.apex_rise = {})",
+                    format_float(b.apex_rise)
+                ),
             ));
         }
         let s = &self.solver;
@@ -713,7 +796,9 @@ impl Scene {
                     top.insert((*key).into(), v);
                 }
                 Some((sec, name)) => {
-                    let entry = top.entry(sec.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                    let entry = top
+                        .entry(sec.to_string())
+                        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
                     if let toml::Value::Table(t) = entry {
                         t.insert(name.into(), v);
                     }

@@ -36,7 +36,7 @@
 //! - **Peaks** (`|F_r|`, `F_c`, stroke) are sampled at four points of each step's dense output
 //!   and refined once per run inside the step that holds the largest sample (golden-section
 //!   search on the dense polynomial). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
-//! - **Early end** (`solver.early_end`): see [`simulate`]; the summary equals the full run's to
+//! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
 //!   the tolerance (tested).
 //! - **Cavitation** (extension, off by default): `p_m >= hydraulic.cavitation_pressure`, with
 //!   events at its onset and end; the orifice then carries `p_cav - p1`.
@@ -61,8 +61,8 @@
 //! read (its labels are garbled).
 //!
 //! Modules: [`config`] (scene keys, defaults, validation), [`physics`] (force laws, robot
-//! profile, preload equilibrium), [`model`] (the ODE system, events, metrics), [`simulate`]
-//! (one run), [`summary`], [`trajectory`].
+//! profile, preload equilibrium), [`model`] (the ODE system, events, metrics), [`simulate`](mod@simulate)
+//! (one run), [`summary`](mod@summary), [`trajectory`].
 
 pub mod config;
 pub mod model;

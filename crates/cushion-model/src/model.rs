@@ -257,20 +257,31 @@ impl Model {
             h: bi.apex_rise,
             e: bi.offset,
             dead_time: scene.robot.dead_time,
-            p_cav: (scene.module == Module::Hydraulic && h.cavitation).then_some(h.cavitation_pressure),
+            p_cav: (scene.module == Module::Hydraulic && h.cavitation)
+                .then_some(h.cavitation_pressure),
         };
         let from_rest = match scene.robot.start {
             RobotStart::Cruising => None,
             RobotStart::Rest => Some(scene.robot.acceleration),
         };
-        let robot = RobotProfile::new(scene.robot.approach_speed, scene.robot.brake_deceleration, from_rest);
-        let v0 = if from_rest.is_some() { 0.0 } else { scene.robot.approach_speed };
+        let robot = RobotProfile::new(
+            scene.robot.approach_speed,
+            scene.robot.brake_deceleration,
+            from_rest,
+        );
+        let v0 = if from_rest.is_some() {
+            0.0
+        } else {
+            scene.robot.approach_speed
+        };
 
         // Static preload equilibrium on the forward stop.
         let s0 = match p.module {
             Module::Hydraulic => {
                 let (p10, vg0, a_p, kappa) = (p.p10, p.v_g0, p.a_p, p.kappa);
-                physics::preload_equilibrium(p.k_e, |s| physics::gas_pressure(p10, vg0, a_p, kappa, s) * a_p)
+                physics::preload_equilibrium(p.k_e, |s| {
+                    physics::gas_pressure(p10, vg0, a_p, kappa, s) * a_p
+                })
             }
             Module::Bistable => {
                 let (k_b, w, hh, e) = (p.k_b, p.w, p.h, p.e);
@@ -391,7 +402,16 @@ impl Model {
     pub(crate) fn eval(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
         let p = &self.p;
         let (x_r, v_r, a_r) = seg.at(t);
-        let mut e = Eval { x_r, v_r, a_r, p1: f64::NAN, x_p: f64::NAN, v_p: f64::NAN, a_p: f64::NAN, ..Eval::default() };
+        let mut e = Eval {
+            x_r,
+            v_r,
+            a_r,
+            p1: f64::NAN,
+            x_p: f64::NAN,
+            v_p: f64::NAN,
+            a_p: f64::NAN,
+            ..Eval::default()
+        };
         let rigid = p.module == Module::Rigid;
         let mut f_stop = 0.0;
         if let Some(i) = self.layout.tool {
@@ -489,7 +509,11 @@ impl Model {
         if let Some(rec) = self.record.as_mut() {
             rec.push(point);
         }
-        self.log.push(EventLogEntry { t, name: name.to_string(), point });
+        self.log.push(EventLogEntry {
+            t,
+            name: name.to_string(),
+            point,
+        });
     }
 
     fn brake_now(&mut self, t: f64, y: &[f64], ctl: &mut Control) {
@@ -520,10 +544,18 @@ impl Model {
             // found (an event function that starts a step exactly at zero does not fire).
             EV_OBJECT => {
                 let j = self.layout.object.unwrap_or(0);
-                tool(y).0 - y[j] - if r.obj_contact { 0.0 } else { CONTACT_HYSTERESIS }
+                tool(y).0
+                    - y[j]
+                    - if r.obj_contact {
+                        0.0
+                    } else {
+                        CONTACT_HYSTERESIS
+                    }
             }
             EV_FWD => tool(y).0 - x_r - if r.fwd { 0.0 } else { CONTACT_HYSTERESIS },
-            EV_BACK => x_r - tool(y).0 - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS },
+            EV_BACK => {
+                x_r - tool(y).0 - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS }
+            }
             EV_TOOL_STICK => {
                 if r.tool_stuck {
                     let e = self.eval(t, y, seg, r);
@@ -547,7 +579,11 @@ impl Model {
                 let sd = v_r - tool(y).1;
                 let p = &self.p;
                 // the same hysteresis idea: begins at 0, ends at +1e-12 (p10 + |p_cav|)
-                let hyst = if r.cavitating { 1e-12 * (p.p10 + p.p_cav.unwrap_or(0.0).abs()) } else { 0.0 };
+                let hyst = if r.cavitating {
+                    1e-12 * (p.p10 + p.p_cav.unwrap_or(0.0).abs())
+                } else {
+                    0.0
+                };
                 physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s)
                     + physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, sd)
                     - p.p_cav.unwrap_or(0.0)
@@ -683,14 +719,21 @@ impl Model {
     /// object is out of contact and either stuck on the plane or free and not slower than the
     /// tool. Then the run may end early with its final values extrapolated exactly.
     fn can_end_early(&self, t: f64, y: &[f64]) -> bool {
-        if !(self.early_end_enabled && t < self.t_end && self.robot.stopped() && !self.regime.obj_contact) {
+        if !(self.early_end_enabled
+            && t < self.t_end
+            && self.robot.stopped()
+            && !self.regime.obj_contact)
+        {
             return false;
         }
         let seg = *self.robot.current();
         let e = self.eval(t, y, &seg, &self.regime);
         let tool_settled = match self.layout.tool {
             None => true,
-            Some(_) => self.regime.tool_stuck || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a),
+            Some(_) => {
+                self.regime.tool_stuck
+                    || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
+            }
         };
         let object_done = match self.layout.object {
             None => true,
@@ -708,11 +751,17 @@ impl Model {
     /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest samples,
     /// by golden-section search on the step's dense output (rebuilt from its five nodes).
     pub(crate) fn refine_peaks(&mut self) {
-        let n = self.layout.n.max(1).min(MAX_STATES);
+        let n = self.layout.n.clamp(1, MAX_STATES);
         if let Some(c) = self.fr_peak_step.take() {
             let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).f_r;
             let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-            let (t, v) = golden_max(|t| f(t).abs(), lo, hi, c.ts[c.k], self.metrics.peak_fr.abs());
+            let (t, v) = golden_max(
+                |t| f(t).abs(),
+                lo,
+                hi,
+                c.ts[c.k],
+                self.metrics.peak_fr.abs(),
+            );
             if v > self.metrics.peak_fr.abs() {
                 self.metrics.peak_fr = f(t);
                 self.metrics.t_peak_fr = t;
@@ -739,8 +788,14 @@ impl Model {
         let r = self.step_regime;
         // Five nodes of the step's dense output (a polynomial of degree 4 in t, so these five
         // states reproduce it exactly); the physics is sampled at the four after t0.
-        let n = self.layout.n.max(1).min(MAX_STATES);
-        let tk = |k: usize| if k == K { t1 } else { t0 + (t1 - t0) * (k as f64 / K as f64) };
+        let n = self.layout.n.clamp(1, MAX_STATES);
+        let tk = |k: usize| {
+            if k == K {
+                t1
+            } else {
+                t0 + (t1 - t0) * (k as f64 / K as f64)
+            }
+        };
         let mut nodes = [[0.0; MAX_STATES]; K + 1];
         for (k, node) in nodes.iter_mut().enumerate() {
             let yk = match k {
@@ -767,7 +822,13 @@ impl Model {
         }
         // A new largest sample: remember its step; the peak inside it is refined once, at the
         // end of the run (`refine_peaks`).
-        let cand = |k: usize| PeakStep { ts: std::array::from_fn(tk), nodes, seg, regime: r, k };
+        let cand = |k: usize| PeakStep {
+            ts: std::array::from_fn(tk),
+            nodes,
+            seg,
+            regime: r,
+            k,
+        };
         if fr_best.1.abs() > self.metrics.peak_fr.abs() {
             self.metrics.peak_fr = fr_best.1;
             self.metrics.t_peak_fr = tk(fr_best.0);
@@ -846,7 +907,13 @@ impl PeakStep {
 
 /// Largest value of `f` on `[lo, hi]` by golden-section search, starting from a known sample
 /// `(t_best, f_best)`; returns `(t, f(t))` of the best point seen.
-fn golden_max(f: impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, t_best: f64, f_best: f64) -> (f64, f64) {
+fn golden_max(
+    f: impl Fn(f64) -> f64,
+    mut lo: f64,
+    mut hi: f64,
+    t_best: f64,
+    f_best: f64,
+) -> (f64, f64) {
     const R: f64 = 0.618_033_988_749_894_9;
     let mut best = (t_best, f_best);
     let mut a = hi - R * (hi - lo);
@@ -954,10 +1021,34 @@ impl<const N: usize> OdeSystem<N> for Model {
     fn event_direction(&self, i: usize) -> Direction {
         match self.events.get(i).copied() {
             Some(EV_SENSOR) => Direction::Rising,
-            Some(EV_OBJECT) => if self.regime.obj_contact { Direction::Falling } else { Direction::Rising },
-            Some(EV_FWD) => if self.regime.fwd { Direction::Falling } else { Direction::Rising },
-            Some(EV_BACK) => if self.regime.back { Direction::Falling } else { Direction::Rising },
-            Some(EV_CAVITATION) => if self.regime.cavitating { Direction::Rising } else { Direction::Falling },
+            Some(EV_OBJECT) => {
+                if self.regime.obj_contact {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_FWD) => {
+                if self.regime.fwd {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_BACK) => {
+                if self.regime.back {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_CAVITATION) => {
+                if self.regime.cavitating {
+                    Direction::Rising
+                } else {
+                    Direction::Falling
+                }
+            }
             _ => Direction::Both,
         }
     }

@@ -113,7 +113,11 @@ impl Segment {
     #[inline]
     pub fn at(&self, t: f64) -> (f64, f64, f64) {
         let dt = t - self.t0;
-        (self.x0 + dt * (self.v0 + 0.5 * self.a * dt), self.v0 + self.a * dt, self.a)
+        (
+            self.x0 + dt * (self.v0 + 0.5 * self.a * dt),
+            self.v0 + self.a * dt,
+            self.a,
+        )
     }
 }
 
@@ -135,8 +139,20 @@ impl RobotProfile {
     /// Cruising at `v_max` from `t = 0`, or from rest accelerating at `a_acc`.
     pub fn new(v_max: f64, a_brake: f64, from_rest: Option<f64>) -> RobotProfile {
         let first = match from_rest {
-            None => Segment { t0: 0.0, x0: 0.0, v0: v_max, a: 0.0, phase: Phase::Cruising },
-            Some(a) => Segment { t0: 0.0, x0: 0.0, v0: 0.0, a, phase: Phase::Accelerating },
+            None => Segment {
+                t0: 0.0,
+                x0: 0.0,
+                v0: v_max,
+                a: 0.0,
+                phase: Phase::Cruising,
+            },
+            Some(a) => Segment {
+                t0: 0.0,
+                x0: 0.0,
+                v0: 0.0,
+                a,
+                phase: Phase::Accelerating,
+            },
         };
         RobotProfile {
             segs: [first; 5],
@@ -168,7 +184,13 @@ impl RobotProfile {
     fn push(&mut self, t: f64, v: f64, a: f64, phase: Phase) {
         let (x, _, _) = self.current().at(t);
         if self.n < self.segs.len() {
-            self.segs[self.n] = Segment { t0: t, x0: x, v0: v, a, phase };
+            self.segs[self.n] = Segment {
+                t0: t,
+                x0: x,
+                v0: v,
+                a,
+                phase,
+            };
             self.n += 1;
         }
     }
@@ -251,7 +273,7 @@ pub fn find_root(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
 /// does not push forward at `s = 0` gives `s0 = 0`.
 pub fn preload_equilibrium(k_e: f64, preload: impl Fn(f64) -> f64) -> f64 {
     let f0 = preload(0.0);
-    if !(f0 > 0.0) {
+    if f0.is_nan() || f0 <= 0.0 {
         return 0.0;
     }
     // g(delta) = k_e delta^1.5 - preload(-delta): negative at 0, grows without bound.
@@ -277,7 +299,11 @@ mod tests {
     fn hunt_crossley_by_hand() {
         // d = 1e-4 m: d^1.5 = 1e-6; k = 0.6e6 -> 0.6 N elastic; dd = 0.1 -> chi d^1.5 dd = 0.135 N.
         assert!(close(hunt_crossley(0.6e6, 1.35e6, 1e-4, 0.1), 0.735, 1e-12));
-        assert!(close(hunt_crossley(0.6e6, 1.35e6, 1e-4, -0.1), 0.6 - 0.135, 1e-12));
+        assert!(close(
+            hunt_crossley(0.6e6, 1.35e6, 1e-4, -0.1),
+            0.6 - 0.135,
+            1e-12
+        ));
         // fast separation: unclamped law would pull (0.6 - 1.35 = -0.75 N); clamped to 0.
         assert_eq!(hunt_crossley(0.6e6, 1.35e6, 1e-4, -1.0), 0.0);
         // no penetration, no force
@@ -292,25 +318,45 @@ mod tests {
         // paper values: Ap/Ao = (0.02/0.008)^2 = 6.25; 0.5*3*900*6.25^2 = 52734.375 Pa/(m/s)^2
         let a_p = std::f64::consts::PI * 0.02f64.powi(2);
         let a_o = std::f64::consts::PI * 0.008f64.powi(2);
-        assert!(close(orifice_pressure_drop(3.0, 900.0, a_p, a_o, 1.0), 52734.375, 1e-12));
-        assert!(close(orifice_pressure_drop(3.0, 900.0, a_p, a_o, -0.5), -52734.375 * 0.25, 1e-12));
+        assert!(close(
+            orifice_pressure_drop(3.0, 900.0, a_p, a_o, 1.0),
+            52734.375,
+            1e-12
+        ));
+        assert!(close(
+            orifice_pressure_drop(3.0, 900.0, a_p, a_o, -0.5),
+            -52734.375 * 0.25,
+            1e-12
+        ));
         assert_eq!(orifice_pressure_drop(3.0, 900.0, a_p, a_o, 0.0), 0.0);
     }
 
     #[test]
     fn gas_by_hand() {
         let a_p = std::f64::consts::PI * 0.02f64.powi(2);
-        assert!(close(gas_pressure(1000.0, 7.63e-5, a_p, 1.4, 0.0), 1000.0, 1e-15));
+        assert!(close(
+            gas_pressure(1000.0, 7.63e-5, a_p, 1.4, 0.0),
+            1000.0,
+            1e-15
+        ));
         // at full stroke: V = 7.63e-5 - 1.2566e-3*0.023 = 4.7398e-5
         let v = 7.63e-5 - a_p * 0.023;
         let p = 1000.0 * (7.63e-5 / v).powf(1.4);
-        assert!(close(gas_pressure(1000.0, 7.63e-5, a_p, 1.4, 0.023), p, 1e-14));
+        assert!(close(
+            gas_pressure(1000.0, 7.63e-5, a_p, 1.4, 0.023),
+            p,
+            1e-14
+        ));
         assert!(p > 1900.0 && p < 2000.0, "{p}");
         // energy derivative is p1 A_p
         let s = 0.01;
         let e = |s| gas_energy(1000.0, 7.63e-5, a_p, 1.4, s);
         let de = (e(s + 1e-7) - e(s - 1e-7)) / 2e-7;
-        assert!(close(de, gas_pressure(1000.0, 7.63e-5, a_p, 1.4, s) * a_p, 1e-7));
+        assert!(close(
+            de,
+            gas_pressure(1000.0, 7.63e-5, a_p, 1.4, s) * a_p,
+            1e-7
+        ));
         assert_eq!(e(0.0), 0.0);
     }
 
@@ -333,7 +379,9 @@ mod tests {
         // symmetric: holds the tool on the back stop with the same force (x = 2h - e)
         assert!(close(bistable_force(k, w, h, 2.0 * h - 0.001), -f, 1e-12));
         // snap force: the largest forward force between 0 and h is about 5.4 N
-        let fmax = (0..1000).map(|i| bistable_force(k, w, h, h * i as f64 / 1000.0)).fold(0.0, f64::max);
+        let fmax = (0..1000)
+            .map(|i| bistable_force(k, w, h, h * i as f64 / 1000.0))
+            .fold(0.0, f64::max);
         assert!((fmax - 5.4).abs() < 0.1, "{fmax}");
         // energy derivative is the force
         let x = 0.007;

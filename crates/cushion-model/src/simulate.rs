@@ -2,7 +2,7 @@
 //!
 //! The scene is validated, assembled into a [`Model`] holding only its parts, solved with
 //! `cushion-ode` over a state of the size the scene needs (the integrator is generic over the
-//! state size `N`; the run picks `N` from the scene's [`Layout`] at run time), and reduced to a
+//! state size `N`; the run picks `N` from the scene's [`Layout`](crate::model::Layout) at run time), and reduced to a
 //! [`Summary`].
 //!
 //! - Robot impulse `int F_r dt` is exact from momentum: `F_r = -(m_t a_t + F_c)` and
@@ -53,7 +53,13 @@ struct Outcome {
 fn run<const N: usize>(model: &mut Model, opts: &SolverOptions, t_end: f64) -> Outcome {
     let y0 = State::<N>::from_column_slice(&model.y0);
     let sol = cushion_ode::solve(model, 0.0, y0, t_end, opts);
-    Outcome { status: sol.status, message: sol.message, t: sol.t, y: sol.y.as_slice().to_vec(), stats: sol.stats }
+    Outcome {
+        status: sol.status,
+        message: sol.message,
+        t: sol.t,
+        y: sol.y.as_slice().to_vec(),
+        stats: sol.stats,
+    }
 }
 
 /// The integrator settings of a scene.
@@ -79,12 +85,18 @@ pub fn solver_options(scene: &Scene) -> SolverOptions {
 /// message; a solver failure gives its status and message.
 pub fn simulate(scene: &Scene, opts: &RunOptions) -> RunResult {
     if let Err(e) = scene.validate() {
-        return RunResult { summary: Summary::invalid(e.to_string()), trajectory: None, events: Vec::new() };
+        return RunResult {
+            summary: Summary::invalid(e.to_string()),
+            trajectory: None,
+            events: Vec::new(),
+        };
     }
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| simulate_valid(scene, opts))) {
         Ok(r) => r,
         Err(_) => RunResult {
-            summary: Summary::invalid("internal error: the model panicked (please report this scene)"),
+            summary: Summary::invalid(
+                "internal error: the model panicked (please report this scene)",
+            ),
             trajectory: None,
             events: Vec::new(),
         },
@@ -127,7 +139,8 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
             Module::Rigid => {}
         }
         if l.tool.is_some() {
-            el += physics::hunt_crossley_energy(p.k_e, -s) + physics::hunt_crossley_energy(p.k_e, s - p.stroke);
+            el += physics::hunt_crossley_energy(p.k_e, -s)
+                + physics::hunt_crossley_energy(p.k_e, s - p.stroke);
         }
         if let Some(j) = l.object {
             el += physics::hunt_crossley_energy(p.k_c, x_t - y[j]);
@@ -145,7 +158,11 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
         scale = scale.max(y[*k].abs());
     }
     let mismatch = w - (d_ke + d_gas + d_el + d_total);
-    let residual = if scale > 0.0 { mismatch.abs() / scale } else { mismatch.abs() };
+    let residual = if scale > 0.0 {
+        mismatch.abs() / scale
+    } else {
+        mismatch.abs()
+    };
     Some((residual, [w, d_ke, d_gas, d_el, d_total]))
 }
 
@@ -169,7 +186,9 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
         10 => run::<10>(&mut model, &sopts, t_end),
         n => {
             return RunResult {
-                summary: Summary::invalid(format!("internal error: {n} states (at most {MAX_STATES})")),
+                summary: Summary::invalid(format!(
+                    "internal error: {n} states (at most {MAX_STATES})"
+                )),
                 trajectory: None,
                 events: Vec::new(),
             }
@@ -185,7 +204,11 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
         Status::InvalidInput => RunStatus::Invalid,
     };
     // The stiffness warning is in `stats.stiff`; the message stays empty for a run that is ok.
-    let message = if status == RunStatus::Ok { String::new() } else { out.message.clone() };
+    let message = if status == RunStatus::Ok {
+        String::new()
+    } else {
+        out.message.clone()
+    };
     // Final state; extrapolated exactly to t_end after an early end.
     let mut y = out.y.clone();
     let mut t = out.t;
@@ -198,7 +221,11 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
         }
         t = t_end;
         let pt = model.point_at(te, &out.y);
-        model.log.push(EventLogEntry { t: te, name: "early_end".into(), point: pt });
+        model.log.push(EventLogEntry {
+            t: te,
+            name: "early_end".into(),
+            point: pt,
+        });
     }
     let l = model.layout;
     let p = model.p.clone();
@@ -206,7 +233,11 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
     let e_end = model.eval(t, &y, &seg_end, &model.regime);
 
     let (object_final_velocity, object_final_momentum, object_travel) = match l.object {
-        Some(j) => (Some(y[j + 1]), Some(p.m_p * y[j + 1]), Some(y[j] - model.y0[j])),
+        Some(j) => (
+            Some(y[j + 1]),
+            Some(p.m_p * y[j + 1]),
+            Some(y[j] - model.y0[j]),
+        ),
         None => (None, None, None),
     };
     // Robot impulse from momentum.
@@ -223,7 +254,13 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
     }
     let energy_residual = energy_ledger(&model, t, &y).map(|(r, _)| r);
     let max_gas_pressure = match p.module {
-        Module::Hydraulic => Some(physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, model.metrics.max_stroke)),
+        Module::Hydraulic => Some(physics::gas_pressure(
+            p.p10,
+            p.v_g0,
+            p.a_p,
+            p.kappa,
+            model.metrics.max_stroke,
+        )),
         _ => None,
     };
     let t_brake = model.robot.t_brake;
@@ -261,10 +298,19 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
         }
         pts.sort_by(|a, b| a.t.total_cmp(&b.t));
         // Keep both sides of a jump (kinks of the robot profile); drop exact duplicates.
-        pts.dedup_by(|b, a| a.values().iter().zip(b.values().iter()).all(|(x, y)| x.to_bits() == y.to_bits()));
+        pts.dedup_by(|b, a| {
+            a.values()
+                .iter()
+                .zip(b.values().iter())
+                .all(|(x, y)| x.to_bits() == y.to_bits())
+        });
         Trajectory { points: pts }
     });
     let mut events = std::mem::take(&mut model.log);
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
-    RunResult { summary, trajectory, events }
+    RunResult {
+        summary,
+        trajectory,
+        events,
+    }
 }

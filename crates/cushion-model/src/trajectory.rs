@@ -25,8 +25,9 @@ pub struct TrajectoryPoint {
 
 impl TrajectoryPoint {
     /// Column names, in the order of [`TrajectoryPoint::values`].
-    pub const COLUMNS: [&'static str; 11] =
-        ["t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r"];
+    pub const COLUMNS: [&'static str; 11] = [
+        "t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r",
+    ];
 
     pub fn values(&self) -> [f64; 11] {
         [

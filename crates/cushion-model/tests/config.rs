@@ -95,7 +95,13 @@ fn scene_file_sections_and_defaults() {
 #[test]
 fn shipped_scenes_parse_and_validate() {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps/scenes");
-    for name in ["paper-hydraulic-dt70", "paper-hydraulic-dt10", "paper-bistable-dt70", "paper-bistable-dt10", "paper-rigid"] {
+    for name in [
+        "paper-hydraulic-dt70",
+        "paper-hydraulic-dt10",
+        "paper-bistable-dt70",
+        "paper-bistable-dt10",
+        "paper-rigid",
+    ] {
         let s = Scene::from_file(&dir.join(format!("{name}.toml"))).unwrap();
         s.validate().unwrap();
     }
@@ -179,7 +185,10 @@ fn rejects_unknown_key() {
     let e = s.set_from_str("robot.dead_tim", "0.01").unwrap_err();
     assert!(matches!(e, ConfigError::UnknownKey { .. }));
     let m = e.to_string();
-    assert!(m.contains("robot.dead_tim") && m.contains("robot.dead_time"), "{m}");
+    assert!(
+        m.contains("robot.dead_tim") && m.contains("robot.dead_time"),
+        "{m}"
+    );
     let e = Scene::from_toml_str("[tool]\nmas = 0.1\n").unwrap_err();
     assert!(e.to_string().contains("tool.mas"), "{e}");
     let e = Scene::from_toml_str("[gripper]\nmass = 0.1\n").unwrap_err();
@@ -192,23 +201,38 @@ fn rejects_wrong_type() {
     let e = s.set_from_str("tool.mass", "heavy").unwrap_err();
     assert!(matches!(e, ConfigError::WrongType { .. }));
     let m = e.to_string();
-    assert!(m.contains("tool.mass") && m.contains("heavy") && m.contains("number"), "{m}");
+    assert!(
+        m.contains("tool.mass") && m.contains("heavy") && m.contains("number"),
+        "{m}"
+    );
     let e = Scene::from_toml_str("[object]\nenabled = 1\n").unwrap_err();
-    assert!(e.to_string().contains("object.enabled") && e.to_string().contains("true or false"), "{e}");
+    assert!(
+        e.to_string().contains("object.enabled") && e.to_string().contains("true or false"),
+        "{e}"
+    );
 }
 
 #[test]
 fn rejects_unknown_module_name() {
     let mut s = Scene::default();
-    let m = s.set_from_str("module", "pneumatic").unwrap_err().to_string();
-    assert!(m.contains("module") && m.contains("pneumatic") && m.contains("hydraulic"), "{m}");
+    let m = s
+        .set_from_str("module", "pneumatic")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        m.contains("module") && m.contains("pneumatic") && m.contains("hydraulic"),
+        "{m}"
+    );
 }
 
 #[test]
 fn rejects_unreadable_file() {
     let e = Scene::from_file(std::path::Path::new("/nonexistent/scene.toml")).unwrap_err();
     let m = e.to_string();
-    assert!(m.contains("/nonexistent/scene.toml") && m.contains("cannot read"), "{m}");
+    assert!(
+        m.contains("/nonexistent/scene.toml") && m.contains("cannot read"),
+        "{m}"
+    );
 }
 
 #[test]

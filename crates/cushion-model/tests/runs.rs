@@ -2,11 +2,16 @@
 //! section 3's claims on the shipped paper scenes, idle parts, early end, stick-slip.
 
 use cushion_model::model::Layout;
-use cushion_model::physics::{bistable_force, gas_pressure, hunt_crossley, orifice_pressure_drop, GRAVITY};
-use cushion_model::{simulate, Module, RunOptions, RunResult, RunStatus, Scene, Summary, TrajectoryPoint};
+use cushion_model::physics::{
+    bistable_force, gas_pressure, hunt_crossley, orifice_pressure_drop, GRAVITY,
+};
+use cushion_model::{
+    simulate, Module, RunOptions, RunResult, RunStatus, Scene, Summary, TrajectoryPoint,
+};
 
 fn paper(name: &str) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../sweeps/scenes/{name}.toml"));
+    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join(format!("../../sweeps/scenes/{name}.toml"));
     Scene::from_file(&p).unwrap()
 }
 
@@ -28,7 +33,13 @@ fn run(s: &Scene) -> RunResult {
 }
 
 fn run_traj(s: &Scene, dt: f64) -> RunResult {
-    let r = simulate(s, &RunOptions { trajectory: true, sample_interval: Some(dt) });
+    let r = simulate(
+        s,
+        &RunOptions {
+            trajectory: true,
+            sample_interval: Some(dt),
+        },
+    );
     assert_eq!(r.summary.status, RunStatus::Ok, "{}", r.summary.message);
     r
 }
@@ -44,14 +55,31 @@ fn module_force(s: &Scene, p: &TrajectoryPoint) -> f64 {
     let module = match s.module {
         Module::Hydraulic => {
             let h = &s.hydraulic;
-            let p1 = gas_pressure(h.gas_pressure, h.gas_volume, s.piston_area(), h.gas_exponent, p.s);
+            let p1 = gas_pressure(
+                h.gas_pressure,
+                h.gas_volume,
+                s.piston_area(),
+                h.gas_exponent,
+                p.s,
+            );
             assert!((p1 - p.p1).abs() <= 1e-12 * p1, "p1 {} vs {}", p1, p.p1);
-            let dp = orifice_pressure_drop(h.loss_coefficient, h.liquid_density, s.piston_area(), s.orifice_area(), sd);
+            let dp = orifice_pressure_drop(
+                h.loss_coefficient,
+                h.liquid_density,
+                s.piston_area(),
+                s.orifice_area(),
+                sd,
+            );
             (p1 + dp) * s.piston_area()
         }
         Module::Bistable => {
             let bi = &s.bistable;
-            bistable_force(bi.spring_stiffness, bi.half_span, bi.apex_rise, p.s + bi.offset)
+            bistable_force(
+                bi.spring_stiffness,
+                bi.half_span,
+                bi.apex_rise,
+                p.s + bi.offset,
+            )
         }
         Module::Rigid => unreachable!(),
     };
@@ -59,7 +87,12 @@ fn module_force(s: &Scene, p: &TrajectoryPoint) -> f64 {
 }
 
 fn contact_force(s: &Scene, p: &TrajectoryPoint) -> f64 {
-    hunt_crossley(s.object.contact_stiffness, s.object.contact_damping, p.x_t - p.x_p, p.v_t - p.v_p)
+    hunt_crossley(
+        s.object.contact_stiffness,
+        s.object.contact_damping,
+        p.x_t - p.x_p,
+        p.v_t - p.v_p,
+    )
 }
 
 fn check_newton(s: &Scene) {
@@ -71,22 +104,40 @@ fn check_newton(s: &Scene) {
     // 1. F_r = -G and F_c from the state, at every output point.
     for p in pts {
         let fc = contact_force(s, p);
-        assert!((fc - p.f_c).abs() <= 1e-9 * (1.0 + fc), "F_c at t = {}: {} vs {}", p.t, p.f_c, fc);
+        assert!(
+            (fc - p.f_c).abs() <= 1e-9 * (1.0 + fc),
+            "F_c at t = {}: {} vs {}",
+            p.t,
+            p.f_c,
+            fc
+        );
         if s.module != Module::Rigid {
             let g = module_force(s, p);
-            assert!((p.f_r + g).abs() <= 1e-9 * (1.0 + g.abs()), "F_r at t = {}: {} vs {}", p.t, p.f_r, -g);
+            assert!(
+                (p.f_r + g).abs() <= 1e-9 * (1.0 + g.abs()),
+                "F_r at t = {}: {} vs {}",
+                p.t,
+                p.f_r,
+                -g
+            );
         }
     }
     // 2. F_r = -(m_t a_t + F_c) with a_t from the motion itself (central differences of v_t on
     //    the uniform samples), away from events and kinks.
-    let uniform: Vec<&TrajectoryPoint> =
-        pts.iter().filter(|p| ((p.t / dt).round() * dt - p.t).abs() < 1e-12 && p.t > 0.0).collect();
+    let uniform: Vec<&TrajectoryPoint> = pts
+        .iter()
+        .filter(|p| ((p.t / dt).round() * dt - p.t).abs() < 1e-12 && p.t > 0.0)
+        .collect();
     let ev: Vec<f64> = r.events.iter().map(|e| e.t).collect();
     let mut worst: f64 = 0.0;
     let mut n = 0;
     for w in uniform.windows(5) {
         let (a, b, c) = (w[0], w[2], w[4]);
-        if (c.t - a.t - 4.0 * dt).abs() > 1e-9 || ev.iter().any(|&te| te >= a.t - 2.0 * dt && te <= c.t + 2.0 * dt) {
+        if (c.t - a.t - 4.0 * dt).abs() > 1e-9
+            || ev
+                .iter()
+                .any(|&te| te >= a.t - 2.0 * dt && te <= c.t + 2.0 * dt)
+        {
             continue;
         }
         // fourth-order central difference
@@ -96,7 +147,10 @@ fn check_newton(s: &Scene) {
         n += 1;
     }
     assert!(n > 1000, "{n}");
-    assert!(worst <= 2e-4 * peak, "Newton's third law off by {worst} N (peak {peak} N)");
+    assert!(
+        worst <= 2e-4 * peak,
+        "Newton's third law off by {worst} N (peak {peak} N)"
+    );
 }
 
 #[test]
@@ -117,16 +171,37 @@ fn newton_third_law_rigid() {
 #[test]
 fn preload_equilibrium_holds_still() {
     for module in ["hydraulic", "bistable"] {
-        let s = with(Scene::default(), &[("module", module), ("object.enabled", "false")]);
+        let s = with(
+            Scene::default(),
+            &[("module", module), ("object.enabled", "false")],
+        );
         let r = run_traj(&tight(s), 1e-3);
         let pts = &r.trajectory.unwrap().points;
         let s0 = pts[0].s;
-        assert!(s0 < 0.0, "{module}: the preload presses the tool onto the forward stop");
+        assert!(
+            s0 < 0.0,
+            "{module}: the preload presses the tool onto the forward stop"
+        );
         for p in pts {
             // at rtol 1e-10, atol 1e-13: still to the solver's noise
-            assert!((p.s - s0).abs() < 1e-11, "{module}: s moved by {} at t = {}", p.s - s0, p.t);
-            assert!(p.f_r.abs() < 1e-7, "{module}: F_r = {} at t = {}", p.f_r, p.t);
-            assert!((p.v_t - 1.0).abs() < 1e-9, "{module}: v_t - v_r = {} at t = {}", p.v_t - 1.0, p.t);
+            assert!(
+                (p.s - s0).abs() < 1e-11,
+                "{module}: s moved by {} at t = {}",
+                p.s - s0,
+                p.t
+            );
+            assert!(
+                p.f_r.abs() < 1e-7,
+                "{module}: F_r = {} at t = {}",
+                p.f_r,
+                p.t
+            );
+            assert!(
+                (p.v_t - 1.0).abs() < 1e-9,
+                "{module}: v_t - v_r = {} at t = {}",
+                p.v_t - 1.0,
+                p.t
+            );
         }
         assert_eq!(r.summary.t_detect, None);
         assert!(r.events.is_empty(), "{:?}", r.events);
@@ -141,10 +216,31 @@ fn energy_ledger_closes_for_each_module() {
         ("bistable dt70", paper("paper-bistable-dt70")),
         ("bistable dt10", paper("paper-bistable-dt10")),
         ("rigid", paper("paper-rigid")),
-        ("hydraulic, dry + plane friction", with(paper("paper-hydraulic-dt70"), &[("tool.dry_friction", "2"), ("object.plane_friction", "0.5")])),
-        ("bistable, dry + plane friction", with(paper("paper-bistable-dt10"), &[("tool.dry_friction", "1"), ("object.plane_friction", "0.3")])),
-        ("rigid, plane friction, rest start", with(paper("paper-rigid"), &[("object.plane_friction", "0.4"), ("robot.start", "rest")])),
-        ("hydraulic, rest start", with(paper("paper-hydraulic-dt70"), &[("robot.start", "rest")])),
+        (
+            "hydraulic, dry + plane friction",
+            with(
+                paper("paper-hydraulic-dt70"),
+                &[("tool.dry_friction", "2"), ("object.plane_friction", "0.5")],
+            ),
+        ),
+        (
+            "bistable, dry + plane friction",
+            with(
+                paper("paper-bistable-dt10"),
+                &[("tool.dry_friction", "1"), ("object.plane_friction", "0.3")],
+            ),
+        ),
+        (
+            "rigid, plane friction, rest start",
+            with(
+                paper("paper-rigid"),
+                &[("object.plane_friction", "0.4"), ("robot.start", "rest")],
+            ),
+        ),
+        (
+            "hydraulic, rest start",
+            with(paper("paper-hydraulic-dt70"), &[("robot.start", "rest")]),
+        ),
     ];
     for (name, s) in cases {
         let r = run(&tight(s));
@@ -163,35 +259,75 @@ fn claim_1_hydraulic_dt70_shape() {
     let pts = &r.trajectory.as_ref().unwrap().points;
     let sm = &r.summary;
     let t_brake = sm.t_brake.unwrap();
-    let at = |t: f64| pts.iter().min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs())).unwrap();
+    let at = |t: f64| {
+        pts.iter()
+            .min_by(|a, b| (a.t - t).abs().total_cmp(&(b.t - t).abs()))
+            .unwrap()
+    };
     // at impact the tool slows down
-    let begin = r.events.iter().find(|e| e.name == "object_contact_begin").unwrap().t;
+    let begin = r
+        .events
+        .iter()
+        .find(|e| e.name == "object_contact_begin")
+        .unwrap()
+        .t;
     assert!(at(begin + 3e-3).v_t < 0.7);
     // then tool and object move together (in contact, same speed) until after braking begins
-    let end = r.events.iter().find(|e| e.name == "object_contact_end").unwrap().t;
+    let end = r
+        .events
+        .iter()
+        .find(|e| e.name == "object_contact_end")
+        .unwrap()
+        .t;
     assert!(end > t_brake);
     for t in [0.03, 0.05, t_brake - 1e-3] {
         let p = at(t);
-        assert!((p.v_t - p.v_p).abs() < 0.01 && p.f_c > 0.0, "t = {t}: {p:?}");
+        assert!(
+            (p.v_t - p.v_p).abs() < 0.01 && p.f_c > 0.0,
+            "t = {t}: {p:?}"
+        );
     }
     // the gas pressure peaks when the robot starts braking and falls after it (gas expands while
     // the tool outruns the braking robot)
     let pmax = pts.iter().max_by(|a, b| a.p1.total_cmp(&b.p1)).unwrap();
-    assert!(pmax.t > begin && pmax.t < t_brake, "p1 peaks at {}, brake at {t_brake}", pmax.t);
+    assert!(
+        pmax.t > begin && pmax.t < t_brake,
+        "p1 peaks at {}, brake at {t_brake}",
+        pmax.t
+    );
     assert!((pmax.p1 - sm.max_gas_pressure.unwrap()).abs() < 1e-3 * pmax.p1);
     // after braking begins the tool outruns the robot and the gas expands: p1 falls
-    let after: Vec<_> = pts.iter().filter(|p| p.t > t_brake && p.t < t_brake + 0.02).collect();
+    let after: Vec<_> = pts
+        .iter()
+        .filter(|p| p.t > t_brake && p.t < t_brake + 0.02)
+        .collect();
     assert!(after.iter().all(|p| p.v_t > p.v_r));
     assert!(after.windows(2).all(|w| w[1].p1 <= w[0].p1));
     assert!(at(t_brake + 0.02).p1 < at(t_brake).p1 - 50.0);
     // two main peaks of opposite sign: the impact, and the tool returning onto the forward stop
     assert!(sm.peak_robot_force < 0.0 && sm.t_peak_robot_force < begin + 5e-3);
-    let back_on_stop = r.events.iter().find(|e| e.name == "forward_stop_begin").unwrap().t;
-    let pos = pts.iter().filter(|p| p.t > back_on_stop).max_by(|a, b| a.f_r.total_cmp(&b.f_r)).unwrap();
+    let back_on_stop = r
+        .events
+        .iter()
+        .find(|e| e.name == "forward_stop_begin")
+        .unwrap()
+        .t;
+    let pos = pts
+        .iter()
+        .filter(|p| p.t > back_on_stop)
+        .max_by(|a, b| a.f_r.total_cmp(&b.f_r))
+        .unwrap();
     assert!(pos.f_r > 1.0, "second peak {} N at {}", pos.f_r, pos.t);
     // it is the largest force of its sign in the run
-    let before = pts.iter().filter(|p| p.t < back_on_stop).map(|p| p.f_r).fold(0.0, f64::max);
-    assert!(before < pos.f_r, "positive force before the return: {before} N");
+    let before = pts
+        .iter()
+        .filter(|p| p.t < back_on_stop)
+        .map(|p| p.f_r)
+        .fold(0.0, f64::max);
+    assert!(
+        before < pos.f_r,
+        "positive force before the return: {before} N"
+    );
 }
 
 #[test]
@@ -224,14 +360,31 @@ fn claim_4_dt10_bistable_leaves_object_slower_and_peaks_at_back_stop() {
     // several tool-object impacts, later ones after the robot braked
     assert!(b.object_impacts >= 2);
     let t_brake = b.t_brake.unwrap();
-    assert!(rb.events.iter().filter(|e| e.name == "object_contact_begin").any(|e| e.t > t_brake));
+    assert!(rb
+        .events
+        .iter()
+        .filter(|e| e.name == "object_contact_begin")
+        .any(|e| e.t > t_brake));
     // small first peak at impact, larger ones on the back stop
-    let first_back = rb.events.iter().find(|e| e.name == "back_stop_begin").unwrap().t;
+    let first_back = rb
+        .events
+        .iter()
+        .find(|e| e.name == "back_stop_begin")
+        .unwrap()
+        .t;
     let pts = &rb.trajectory.as_ref().unwrap().points;
-    let impact_peak = pts.iter().filter(|p| p.t < first_back).map(|p| p.f_r.abs()).fold(0.0, f64::max);
+    let impact_peak = pts
+        .iter()
+        .filter(|p| p.t < first_back)
+        .map(|p| p.f_r.abs())
+        .fold(0.0, f64::max);
     assert!(b.back_stop_hit && b.back_stop_impacts >= 2);
     assert!(b.t_peak_robot_force > first_back);
-    assert!(impact_peak < 0.5 * b.peak_robot_force.abs(), "impact {impact_peak} N, peak {} N", b.peak_robot_force);
+    assert!(
+        impact_peak < 0.5 * b.peak_robot_force.abs(),
+        "impact {impact_peak} N, peak {} N",
+        b.peak_robot_force
+    );
 }
 
 #[test]
@@ -239,11 +392,19 @@ fn rigid_peak_force_exceeds_both_modules() {
     let rg = run(&paper("paper-rigid")).summary;
     for name in ["paper-hydraulic-dt70", "paper-bistable-dt70"] {
         let m = run(&paper(name)).summary;
-        assert!(rg.peak_robot_force.abs() > m.peak_robot_force.abs(), "{name}");
+        assert!(
+            rg.peak_robot_force.abs() > m.peak_robot_force.abs(),
+            "{name}"
+        );
     }
     // rigid: detection at first contact
     let r = run(&paper("paper-rigid"));
-    let first = r.events.iter().find(|e| e.name == "object_contact_begin").unwrap().t;
+    let first = r
+        .events
+        .iter()
+        .find(|e| e.name == "object_contact_begin")
+        .unwrap()
+        .t;
     assert_eq!(r.summary.t_detect, Some(first));
     assert!((first - 1e-3).abs() < 1e-12);
 }
@@ -256,14 +417,34 @@ fn assert_same(a: &Summary, b: &Summary, rel: f64, what: &str) {
     let pairs = [
         ("peak_robot_force", a.peak_robot_force, b.peak_robot_force),
         ("robot_impulse", a.robot_impulse, b.robot_impulse),
-        ("peak_contact_force", a.peak_contact_force, b.peak_contact_force),
+        (
+            "peak_contact_force",
+            a.peak_contact_force,
+            b.peak_contact_force,
+        ),
         ("max_stroke", a.max_stroke, b.max_stroke),
-        ("object_final_velocity", a.object_final_velocity.unwrap_or(0.0), b.object_final_velocity.unwrap_or(0.0)),
-        ("object_travel", a.object_travel.unwrap_or(0.0), b.object_travel.unwrap_or(0.0)),
-        ("t_detect", a.t_detect.unwrap_or(0.0), b.t_detect.unwrap_or(0.0)),
+        (
+            "object_final_velocity",
+            a.object_final_velocity.unwrap_or(0.0),
+            b.object_final_velocity.unwrap_or(0.0),
+        ),
+        (
+            "object_travel",
+            a.object_travel.unwrap_or(0.0),
+            b.object_travel.unwrap_or(0.0),
+        ),
+        (
+            "t_detect",
+            a.t_detect.unwrap_or(0.0),
+            b.t_detect.unwrap_or(0.0),
+        ),
     ];
     for (name, x, y) in pairs {
-        let abs = if name.contains("force") || name.contains("impulse") { 1e-6 } else { 1e-9 };
+        let abs = if name.contains("force") || name.contains("impulse") {
+            1e-6
+        } else {
+            1e-9
+        };
         assert!(close(x, y, rel, abs), "{what}: {name} {x} vs {y}");
     }
     assert_eq!(a.object_impacts, b.object_impacts, "{what}");
@@ -273,7 +454,10 @@ fn assert_same(a: &Summary, b: &Summary, rel: f64, what: &str) {
 #[test]
 fn idle_parts_switched_on_do_not_change_results() {
     for name in ["paper-hydraulic-dt70", "paper-bistable-dt10", "paper-rigid"] {
-        let base = with(paper(name), &[("solver.rtol", "1e-9"), ("solver.atol", "1e-12")]);
+        let base = with(
+            paper(name),
+            &[("solver.rtol", "1e-9"), ("solver.atol", "1e-12")],
+        );
         let a = run(&base).summary;
         // the energy ledger only watches
         let b = run(&with(base.clone(), &[("energy.ledger", "false")])).summary;
@@ -287,7 +471,10 @@ fn idle_parts_switched_on_do_not_change_results() {
         let e = run(&with(far.clone(), &[("object.plane_friction", "0.5")])).summary;
         assert_same(&d, &e, 1e-5, &format!("{name}: idle plane friction"));
         let f = run(&with(far, &[("object.enabled", "false")])).summary;
-        assert!(close(d.peak_robot_force, f.peak_robot_force, 1e-5, 1e-6) && close(d.max_stroke, f.max_stroke, 1e-5, 1e-12));
+        assert!(
+            close(d.peak_robot_force, f.peak_robot_force, 1e-5, 1e-6)
+                && close(d.max_stroke, f.max_stroke, 1e-5, 1e-12)
+        );
         assert!(close(d.robot_impulse, f.robot_impulse, 1e-5, 1e-6));
     }
 }
@@ -296,9 +483,15 @@ fn idle_parts_switched_on_do_not_change_results() {
 fn early_end_equals_running_to_t_end() {
     let cases = [
         with(paper("paper-hydraulic-dt70"), &[("t_end", "1.5")]),
-        with(paper("paper-hydraulic-dt10"), &[("t_end", "1.5"), ("object.plane_friction", "0.3")]),
+        with(
+            paper("paper-hydraulic-dt10"),
+            &[("t_end", "1.5"), ("object.plane_friction", "0.3")],
+        ),
         with(paper("paper-rigid"), &[]),
-        with(paper("paper-bistable-dt10"), &[("t_end", "1.5"), ("tool.dry_friction", "0.5")]),
+        with(
+            paper("paper-bistable-dt10"),
+            &[("t_end", "1.5"), ("tool.dry_friction", "0.5")],
+        ),
     ];
     for s in cases {
         let early = run(&s);
@@ -306,57 +499,108 @@ fn early_end_equals_running_to_t_end() {
         let e = early.events.iter().find(|e| e.name == "early_end");
         assert!(e.is_some(), "{:?}: no early end", s.module);
         assert!(early.summary.stats.steps < full.summary.stats.steps);
-        assert_same(&early.summary, &full.summary, 1e-6, &format!("{:?}", s.module));
-        assert!(close(early.summary.energy_residual.unwrap(), full.summary.energy_residual.unwrap(), 1e-3, 1e-9));
+        assert_same(
+            &early.summary,
+            &full.summary,
+            1e-6,
+            &format!("{:?}", s.module),
+        );
+        assert!(close(
+            early.summary.energy_residual.unwrap(),
+            full.summary.energy_residual.unwrap(),
+            1e-3,
+            1e-9
+        ));
         assert_eq!(early.summary.t_brake, full.summary.t_brake);
     }
 }
 
 #[test]
 fn dry_friction_stick_slip_by_events() {
-    let s = tight(with(paper("paper-hydraulic-dt70"), &[("tool.dry_friction", "2.0")]));
+    let s = tight(with(
+        paper("paper-hydraulic-dt70"),
+        &[("tool.dry_friction", "2.0")],
+    ));
     let r = run_traj(&s, 1e-4);
     let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
-    assert!(names.contains(&"tool_slip") && names.contains(&"tool_stick"), "{names:?}");
+    assert!(
+        names.contains(&"tool_slip") && names.contains(&"tool_stick"),
+        "{names:?}"
+    );
     let stick = r.events.iter().find(|e| e.name == "tool_stick").unwrap().t;
     // while stuck the tool moves with the robot exactly and the stroke does not change
-    let pts: Vec<_> = r.trajectory.unwrap().points.into_iter().filter(|p| p.t > stick && p.t < stick + 0.03).collect();
+    let pts: Vec<_> = r
+        .trajectory
+        .unwrap()
+        .points
+        .into_iter()
+        .filter(|p| p.t > stick && p.t < stick + 0.03)
+        .collect();
     assert!(!pts.is_empty());
     for p in &pts {
-        assert!((p.v_t - p.v_r).abs() < 1e-9 && (p.s - pts[0].s).abs() < 1e-9, "{p:?}");
+        assert!(
+            (p.v_t - p.v_r).abs() < 1e-9 && (p.s - pts[0].s).abs() < 1e-9,
+            "{p:?}"
+        );
     }
     // slip begins when static friction would have to exceed d
     let slip = r.events.iter().find(|e| e.name == "tool_slip").unwrap();
-    assert!((slip.point.f_r.abs() - 2.0).abs() < 1e-6, "{:?}", slip.point);
+    assert!(
+        (slip.point.f_r.abs() - 2.0).abs() < 1e-6,
+        "{:?}",
+        slip.point
+    );
 }
 
 #[test]
 fn plane_friction_has_a_stick_phase_and_travel() {
     let mu = 0.5;
-    let s = tight(with(paper("paper-hydraulic-dt70"), &[("object.plane_friction", "0.5")]));
+    let s = tight(with(
+        paper("paper-hydraulic-dt70"),
+        &[("object.plane_friction", "0.5")],
+    ));
     let r = run(&s);
     let sm = &r.summary;
     assert_eq!(sm.object_final_velocity, Some(0.0));
     let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
-    assert!(names.contains(&"object_slip") && names.contains(&"object_stick"), "{names:?}");
+    assert!(
+        names.contains(&"object_slip") && names.contains(&"object_stick"),
+        "{names:?}"
+    );
     // after the last contact the object slides freely and stops after v^2 / (2 mu g)
-    let end = r.events.iter().rfind(|e| e.name == "object_contact_end").unwrap();
+    let end = r
+        .events
+        .iter()
+        .rfind(|e| e.name == "object_contact_end")
+        .unwrap();
     let stick = r.events.iter().rfind(|e| e.name == "object_stick").unwrap();
     assert!(stick.t > end.t);
-    let x0 = end.point.x_p - (sm.object_travel.unwrap() - (stick.point.x_p - end.point.x_p)) ;
+    let x0 = end.point.x_p - (sm.object_travel.unwrap() - (stick.point.x_p - end.point.x_p));
     let slide = stick.point.x_p - end.point.x_p;
     let v = end.point.v_p;
-    assert!(close(slide, v * v / (2.0 * mu * GRAVITY), 1e-7, 0.0), "{slide} vs {}", v * v / (2.0 * mu * GRAVITY));
+    assert!(
+        close(slide, v * v / (2.0 * mu * GRAVITY), 1e-7, 0.0),
+        "{slide} vs {}",
+        v * v / (2.0 * mu * GRAVITY)
+    );
     assert!(close(stick.t - end.t, v / (mu * GRAVITY), 1e-7, 0.0));
     let _ = x0;
     // the object was pushed: slip starts only once F_c exceeds mu m g
     let slip = r.events.iter().find(|e| e.name == "object_slip").unwrap();
-    assert!(close(slip.point.f_c, mu * s.object.mass * GRAVITY, 1e-6, 0.0));
+    assert!(close(
+        slip.point.f_c,
+        mu * s.object.mass * GRAVITY,
+        1e-6,
+        0.0
+    ));
 }
 
 #[test]
 fn rest_start_weak_preload_is_a_false_trigger() {
-    let base = with(Scene::default(), &[("robot.start", "rest"), ("object.enabled", "false")]);
+    let base = with(
+        Scene::default(),
+        &[("robot.start", "rest"), ("object.enabled", "false")],
+    );
     // 1000 Pa holds the 48 g tool at 10 m/s^2 (1.26 N > 0.48 N): no detection
     let r = run(&base);
     assert_eq!(r.summary.t_detect, None);
@@ -370,7 +614,10 @@ fn rest_start_weak_preload_is_a_false_trigger() {
 fn absent_parts_add_no_state() {
     let l = |sets: &[(&str, &str)]| Layout::of(&with(Scene::default(), sets)).n;
     assert_eq!(l(&[("module", "rigid"), ("energy.ledger", "false")]), 2);
-    assert_eq!(l(&[("object.enabled", "false"), ("energy.ledger", "false")]), 2);
+    assert_eq!(
+        l(&[("object.enabled", "false"), ("energy.ledger", "false")]),
+        2
+    );
     assert_eq!(l(&[("energy.ledger", "false")]), 4);
     // hydraulic: + work, orifice, friction, contact
     assert_eq!(l(&[]), 8);
@@ -392,36 +639,73 @@ fn robot_impulse_is_the_integral_of_f_r() {
                 j += 0.5 * (w[0].f_r + w[1].f_r) * (w[1].t - w[0].t);
             }
             // trapezoids over jumps of F_r at the rigid kinks are exact only up to their width
-            assert!(close(j, r.summary.robot_impulse, 1e-4, 1e-6), "{name}: {j} vs {}", r.summary.robot_impulse);
+            assert!(
+                close(j, r.summary.robot_impulse, 1e-4, 1e-6),
+                "{name}: {j} vs {}",
+                r.summary.robot_impulse
+            );
         }
     }
 }
-
 
 #[test]
 fn fixed_step_methods_agree_with_dp5() {
     let base = paper("paper-hydraulic-dt70");
     let reference = run(&tight(base.clone())).summary;
-    let rk4 = run(&with(base.clone(), &[("solver.method", "rk4"), ("solver.fixed_step", "2e-6")])).summary;
+    let rk4 = run(&with(
+        base.clone(),
+        &[("solver.method", "rk4"), ("solver.fixed_step", "2e-6")],
+    ))
+    .summary;
     let v = reference.object_final_velocity.unwrap();
-    assert!(close(rk4.object_final_velocity.unwrap(), v, 1e-6, 0.0), "{:?}", rk4.object_final_velocity);
-    assert!(close(rk4.peak_robot_force, reference.peak_robot_force, 1e-5, 0.0));
-    let euler = run(&with(base, &[("solver.method", "euler"), ("solver.fixed_step", "1e-6")])).summary;
-    assert!(close(euler.object_final_velocity.unwrap(), v, 1e-2, 0.0), "{:?}", euler.object_final_velocity);
+    assert!(
+        close(rk4.object_final_velocity.unwrap(), v, 1e-6, 0.0),
+        "{:?}",
+        rk4.object_final_velocity
+    );
+    assert!(close(
+        rk4.peak_robot_force,
+        reference.peak_robot_force,
+        1e-5,
+        0.0
+    ));
+    let euler = run(&with(
+        base,
+        &[("solver.method", "euler"), ("solver.fixed_step", "1e-6")],
+    ))
+    .summary;
+    assert!(
+        close(euler.object_final_velocity.unwrap(), v, 1e-2, 0.0),
+        "{:?}",
+        euler.object_final_velocity
+    );
 }
 
 #[test]
 fn solver_failures_are_statuses_with_messages() {
-    let r = simulate(&with(Scene::default(), &[("solver.max_steps", "10")]), &RunOptions::default());
+    let r = simulate(
+        &with(Scene::default(), &[("solver.max_steps", "10")]),
+        &RunOptions::default(),
+    );
     assert_eq!(r.summary.status, RunStatus::MaxSteps);
     assert!(r.summary.message.contains("10"), "{}", r.summary.message);
     // the tool resting on its Hertzian stop makes large explicit steps stiff: "stop" ends there
-    let s = with(Scene::default(), &[("object.enabled", "false"), ("solver.stiffness", "stop")]);
+    let s = with(
+        Scene::default(),
+        &[("object.enabled", "false"), ("solver.stiffness", "stop")],
+    );
     let r = simulate(&s, &RunOptions::default());
     assert_eq!(r.summary.status, RunStatus::Stiff);
-    assert!(r.summary.stats.stiff && r.summary.message.contains("stiff"), "{}", r.summary.message);
+    assert!(
+        r.summary.stats.stiff && r.summary.message.contains("stiff"),
+        "{}",
+        r.summary.message
+    );
     // "warn" records it and goes on; the message of an ok run stays empty
-    let r = simulate(&with(s, &[("solver.stiffness", "warn")]), &RunOptions::default());
+    let r = simulate(
+        &with(s, &[("solver.stiffness", "warn")]),
+        &RunOptions::default(),
+    );
     assert_eq!(r.summary.status, RunStatus::Ok);
     assert!(r.summary.stats.stiff && r.summary.message.is_empty());
 }
@@ -432,7 +716,15 @@ fn event_log_and_trajectory_are_consistent() {
     let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
     assert_eq!(
         names,
-        ["object_contact_begin", "forward_stop_end", "sensor", "brake", "object_contact_end", "forward_stop_begin", "robot_stopped"]
+        [
+            "object_contact_begin",
+            "forward_stop_end",
+            "sensor",
+            "brake",
+            "object_contact_end",
+            "forward_stop_begin",
+            "robot_stopped"
+        ]
     );
     assert!(r.events.windows(2).all(|w| w[0].t <= w[1].t));
     let sensor = &r.events[2];
@@ -461,11 +753,17 @@ fn event_log_and_trajectory_are_consistent() {
 fn cavitation_bounds_the_chamber_pressure() {
     let s = tight(with(
         paper("paper-hydraulic-dt10"),
-        &[("hydraulic.cavitation", "true"), ("hydraulic.cavitation_pressure", "500")],
+        &[
+            ("hydraulic.cavitation", "true"),
+            ("hydraulic.cavitation_pressure", "500"),
+        ],
     ));
     let r = run_traj(&s, 1e-4);
     let names: Vec<&str> = r.events.iter().map(|e| e.name.as_str()).collect();
-    assert!(names.contains(&"cavitation_begin") && names.contains(&"cavitation_end"), "{names:?}");
+    assert!(
+        names.contains(&"cavitation_begin") && names.contains(&"cavitation_end"),
+        "{names:?}"
+    );
     assert!(r.summary.energy_residual.unwrap() < 1e-6);
     // p_m = (-F_r - b sd - F_stop) / A_p never falls below p_cav (checked off the stops)
     let mut below_without = false;
@@ -485,7 +783,11 @@ fn cavitation_bounds_the_chamber_pressure() {
     }
     assert!(below_without);
     // a bound that is never reached changes nothing
-    let idle = run(&with(s.clone(), &[("hydraulic.cavitation_pressure", "-1e6")])).summary;
+    let idle = run(&with(
+        s.clone(),
+        &[("hydraulic.cavitation_pressure", "-1e6")],
+    ))
+    .summary;
     let off = run(&with(s, &[("hydraulic.cavitation", "false")])).summary;
     assert_same(&idle, &off, 1e-7, "idle cavitation");
 }
@@ -497,11 +799,24 @@ fn cavitation_bounds_the_chamber_pressure() {
 fn a_touch_right_after_a_contact_end_is_found() {
     let s = with(
         Scene::default(),
-        &[("module", "bistable"), ("robot.dead_time", "0.06093008942268299"), ("object.mass", "0.5569860549020191")],
+        &[
+            ("module", "bistable"),
+            ("robot.dead_time", "0.06093008942268299"),
+            ("object.mass", "0.5569860549020191"),
+        ],
     );
     let loose = run(&s).summary;
     let ref_ = run(&tight(s)).summary;
     assert_eq!(loose.back_stop_impacts, ref_.back_stop_impacts);
-    assert!(loose.energy_residual.unwrap() < 1e-4, "{:?}", loose.energy_residual);
-    assert!(close(loose.max_stroke, ref_.max_stroke, 1e-5, 0.0), "{} vs {}", loose.max_stroke, ref_.max_stroke);
+    assert!(
+        loose.energy_residual.unwrap() < 1e-4,
+        "{:?}",
+        loose.energy_residual
+    );
+    assert!(
+        close(loose.max_stroke, ref_.max_stroke, 1e-5, 0.0),
+        "{} vs {}",
+        loose.max_stroke,
+        ref_.max_stroke
+    );
 }
