@@ -179,6 +179,13 @@ pub fn run_sweep_with(
         .map_err(|e| io_err("cannot start the thread pool", e))?;
 
     // Every run's scene is built and checked before any run starts.
+    let timing = std::env::var_os("CUSHION_SWEEP_TIMING").is_some();
+    let phase = |what: &str, since: Instant| {
+        if timing {
+            eprintln!("cushion sweep: {what}: {:.3} s", since.elapsed().as_secs_f64());
+        }
+    };
+    let t_phase = Instant::now();
     let first_bad = pool.install(|| {
         (0..n_runs).into_par_iter().find_map_first(|run| {
             let point = design.point(run);
@@ -205,6 +212,7 @@ pub fn run_sweep_with(
         }
     }
 
+    phase("parse and check every run's scene", t_phase);
     let out_dir = opts.out.clone().unwrap_or_else(|| {
         let name = if shard.1 > 1 {
             format!("{}-shard-{}-of-{}", sweep.name, shard.0, shard.1)
@@ -279,9 +287,12 @@ pub fn run_sweep_with(
         let pb = indicatif::ProgressBar::new(m);
         pb.set_style(
             indicatif::ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {per_sec}  ETA {eta}",
+                "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {rate}  ETA {eta}",
             )
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .with_key("rate", |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{:.0} runs/s", s.per_sec());
+            }),
         );
         pb.set_position(m - runs_todo);
         pb.reset_eta();
@@ -292,6 +303,7 @@ pub fn run_sweep_with(
     let abort_after: Option<usize> = std::env::var(ABORT_ENV).ok().and_then(|v| v.parse().ok());
     let chunks_done_now = AtomicUsize::new(0);
 
+    let t_phase = Instant::now();
     for c in &todo {
         let c = *c;
         let results: Vec<(u64, Vec<Value>, RunResult)> = pool.install(|| {
@@ -354,6 +366,8 @@ pub fn run_sweep_with(
         pb.finish_and_clear();
     }
 
+    phase("runs and chunk files", t_phase);
+    let t_phase = Instant::now();
     // Assemble the final files from the chunk files, in run order.
     let failed = assemble(&out_dir, &state_dir, &schema, n_chunks, sweep.record.any())?;
     write_atomic(&out_dir.join("sweep.toml"), sweep.text.as_bytes())
@@ -365,9 +379,12 @@ pub fn run_sweep_with(
         serde_json::to_string_pretty(&provenance).unwrap_or_default().as_bytes(),
     )
     .map_err(|e| io_err(out_dir.display(), e))?;
+    phase("final files", t_phase);
+    let t_phase = Instant::now();
     if let Err(e) = crate::report::write_report(&out_dir) {
         eprintln!("cushion sweep: warning: report charts not written: {e}");
     }
+    phase("report", t_phase);
     fs::remove_dir_all(&state_dir).map_err(|e| io_err(state_dir.display(), e))?;
 
     Ok(SweepOutcome {
