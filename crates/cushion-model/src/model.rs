@@ -218,6 +218,10 @@ pub struct Model {
     fr_peak_step: Option<PeakStep>,
     fc_peak_step: Option<PeakStep>,
     s_peak_step: Option<PeakStep>,
+    /// `F_r, F_c, s, sd` at the end of the last step.
+    last_sample: Option<(f64, f64, f64, f64)>,
+    /// Steps still to sample in full (set by events and time stops).
+    force_sample: u8,
     early_end_enabled: bool,
     t_end: f64,
     settle_v: f64,
@@ -365,6 +369,8 @@ impl Model {
             fr_peak_step: None,
             fc_peak_step: None,
             s_peak_step: None,
+            last_sample: None,
+            force_sample: 0,
             early_end_enabled: scene.solver.early_end,
             t_end: scene.t_end,
             settle_v: 100.0 * atol,
@@ -594,6 +600,7 @@ impl Model {
     }
 
     fn handle_event(&mut self, kind: u8, t: f64, y: &mut [f64], ctl: &mut Control) -> EventAction {
+        self.force_sample = 2;
         // A contact event begins the contact when it is off and ends it when it is on: the
         // regime, not the sign of a value that sits on zero, decides.
         match kind {
@@ -796,20 +803,20 @@ impl Model {
                 t0 + (t1 - t0) * (k as f64 / K as f64)
             }
         };
-        let mut nodes = [[0.0; MAX_STATES]; K + 1];
-        for (k, node) in nodes.iter_mut().enumerate() {
+        let node = |k: usize| {
+            let mut v = [0.0; MAX_STATES];
             let yk = match k {
                 0 => *step.y0,
                 K => *step.y1,
                 _ => step.at(tk(k)),
             };
-            node[..n].copy_from_slice(&yk.as_slice()[..n]);
-        }
+            v[..n].copy_from_slice(&yk.as_slice()[..n]);
+            v
+        };
         let mut fr_best = (0usize, 0.0f64);
         let mut fc_best = (0usize, 0.0f64);
         let mut s_best = (0usize, f64::NEG_INFINITY);
-        for (k, node) in nodes.iter().enumerate().skip(1) {
-            let e = self.eval(tk(k), &node[..n], &seg, &r);
+        let mut consider = |k: usize, e: &Eval| {
             if e.f_r.abs() > fr_best.1.abs() {
                 fr_best = (k, e.f_r);
             }
@@ -819,12 +826,35 @@ impl Model {
             if e.s > s_best.1 {
                 s_best = (k, e.s);
             }
+        };
+        let e1 = self.eval(t1, y1, &seg, &r);
+        consider(K, &e1);
+        // The interior is sampled only where a new peak is possible: near or above the peaks so
+        // far, where the stroke turns, and around events; elsewhere the step's end suffices.
+        let m = &self.metrics;
+        let interior = match self.last_sample {
+            None => true,
+            Some((fr0, fc0, s0, sd0)) => {
+                self.force_sample > 0
+                    || fr0.abs().max(e1.f_r.abs()) > 0.5 * m.peak_fr.abs()
+                    || fc0.max(e1.f_c) > 0.5 * m.peak_fc
+                    || (sd0 > 0.0 && e1.sd <= 0.0)
+                    || s0.max(e1.s) >= m.max_stroke
+            }
+        };
+        if interior {
+            for k in 1..K {
+                let e = self.eval(tk(k), &node(k)[..n], &seg, &r);
+                consider(k, &e);
+            }
         }
+        self.last_sample = Some((e1.f_r, e1.f_c, e1.s, e1.sd));
+        self.force_sample = self.force_sample.saturating_sub(1);
         // A new largest sample: remember its step; the peak inside it is refined once, at the
         // end of the run (`refine_peaks`).
         let cand = |k: usize| PeakStep {
             ts: std::array::from_fn(tk),
-            nodes,
+            nodes: std::array::from_fn(node),
             seg,
             regime: r,
             k,
@@ -1059,6 +1089,7 @@ impl<const N: usize> OdeSystem<N> for Model {
     }
 
     fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
+        self.force_sample = 2;
         if let Some(tb) = self.pending_brake {
             if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {
                 self.pending_brake = None;
