@@ -221,7 +221,8 @@ fn really_killed_and_resumed() {
 #[test]
 fn union_of_shards_equals_the_whole() {
     let dir = tempfile::tempdir().unwrap();
-    let f = sweep_file(dir.path(), "small", SMALL);
+    let body = SMALL.replace("chunk_size = 4", "chunk_size = 4\nrecord = [0, 4, 6, 28]");
+    let f = sweep_file(dir.path(), "small", &body);
     let whole = dir.path().join("whole");
     ok(&cushion(&["sweep", s(&f), "--out", s(&whole), "--quiet"]));
     let shards: Vec<PathBuf> = (1..=3).map(|k| dir.path().join(format!("s{k}"))).collect();
@@ -248,6 +249,23 @@ fn union_of_shards_equals_the_whole() {
         fs::read(whole.join("summary.parquet")).unwrap(),
         fs::read(merged.join("summary.parquet")).unwrap()
     );
+    // The recorded trajectories, merged in run order, equal the whole sweep's.
+    let messages = |p: &Path| -> Vec<(String, u64, Vec<u8>)> {
+        let bytes = fs::read(p).unwrap();
+        mcap::MessageStream::new(&bytes)
+            .unwrap()
+            .map(|m| {
+                let m = m.unwrap();
+                (m.channel.topic.clone(), m.log_time, m.data.to_vec())
+            })
+            .collect()
+    };
+    let whole_msgs = messages(&whole.join("trajectories.mcap"));
+    let mut runs: Vec<&str> = whole_msgs.iter().map(|m| m.0.split('/').nth(2).unwrap()).collect();
+    runs.dedup();
+    assert_eq!(runs, ["0", "4", "6", "28"]);
+    assert_eq!(whole_msgs, messages(&merged.join("trajectories.mcap")));
+    assert!(!shards[2].join("trajectories.mcap").exists(), "shard 3 records no run");
     // A shard given twice is refused.
     let o = cushion(&["merge", s(&shards[0]), s(&shards[0]), s(&shards[1]), "--out", s(&merged)]);
     assert_eq!(o.status.code(), Some(2));

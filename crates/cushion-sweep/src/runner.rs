@@ -270,6 +270,7 @@ pub fn run_sweep_with(
             }
         }
     }
+    remove_stale_temps(&out_dir);
     fs::create_dir_all(&state_dir).map_err(|e| io_err(state_dir.display(), e))?;
     write_atomic(&state_dir.join("state.json"), state.to_string().as_bytes())
         .map_err(|e| io_err(state_dir.display(), e))?;
@@ -425,6 +426,17 @@ fn run_guarded(
     }
 }
 
+/// Temporary files of our outputs left by a process killed while writing them.
+fn remove_stale_temps(out_dir: &Path) {
+    let Ok(entries) = fs::read_dir(out_dir) else { return };
+    for e in entries.flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        if OUTPUT_FILES.iter().any(|f| name.starts_with(&format!(".{f}.tmp-"))) {
+            let _ = fs::remove_file(e.path());
+        }
+    }
+}
+
 fn count_chunks(state_dir: &Path) -> usize {
     fs::read_dir(state_dir)
         .map(|d| {
@@ -527,7 +539,8 @@ fn assemble(
     csv_result?;
     csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
 
-    if recorded {
+    // Only when a run of this output was recorded (a shard may hold none of the listed runs).
+    if recorded && (0..n_chunks).any(|c| chunk_path(c, "mcap").exists()) {
         let path = out_dir.join("trajectories.mcap");
         let mut f = AtomicFile::create(&path).map_err(|e| io_err(path.display(), e))?;
         {
