@@ -820,3 +820,66 @@ fn a_touch_right_after_a_contact_end_is_found() {
         ref_.max_stroke
     );
 }
+
+/// Extreme but valid scenes end with a status (ok or a solver failure), never a panic, and an
+/// ok run's summary is finite.
+#[test]
+fn extreme_scenes_end_with_a_status() {
+    let a_p_l = std::f64::consts::PI * 0.02f64.powi(2) * 0.023;
+    let gas_at_limit = format!("{}", a_p_l * (1.0 + 1e-9));
+    let cases: Vec<Vec<(&str, &str)>> = vec![
+        vec![("object.mass", "100")],
+        vec![("object.mass", "1e-6")],
+        vec![("robot.approach_speed", "10")],
+        vec![("robot.dead_time", "0")],
+        vec![("object.gap", "1e-12")],
+        vec![
+            ("hydraulic.gas_volume", &gas_at_limit),
+            ("object.mass", "50"),
+        ],
+        vec![
+            ("module", "bistable"),
+            ("robot.approach_speed", "5"),
+            ("object.mass", "20"),
+        ],
+        vec![
+            ("module", "rigid"),
+            ("robot.start", "rest"),
+            ("robot.acceleration", "1000"),
+        ],
+        vec![("tool.dry_friction", "1000")],
+        vec![("object.plane_friction", "100")],
+        vec![("solver.method", "euler"), ("solver.fixed_step", "1e-3")],
+        vec![
+            ("solver.rtol", "1e-14"),
+            ("solver.atol", "1e-18"),
+            ("solver.max_steps", "2000"),
+        ],
+        vec![("stops.damping", "0"), ("object.contact_damping", "0")],
+        vec![("hydraulic.orifice_radius", "1e-5")],
+    ];
+    for sets in cases {
+        let s = with(Scene::default(), &sets);
+        let r = simulate(
+            &s,
+            &RunOptions {
+                trajectory: true,
+                sample_interval: Some(1e-3),
+            },
+        );
+        let sm = &r.summary;
+        assert_ne!(sm.status, RunStatus::Invalid, "{sets:?}: {}", sm.message);
+        if sm.status == RunStatus::Ok {
+            for v in [
+                sm.peak_robot_force,
+                sm.robot_impulse,
+                sm.max_stroke,
+                sm.peak_contact_force,
+            ] {
+                assert!(v.is_finite(), "{sets:?}: {sm:?}");
+            }
+        } else {
+            assert!(!sm.message.is_empty(), "{sets:?}");
+        }
+    }
+}
