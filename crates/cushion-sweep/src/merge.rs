@@ -287,7 +287,6 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         }
     }
     emit(&slots, &picks, &mut failed)?;
-    drop(emit);
     if count != n_runs {
         return Err(cfg(format!(
             "the shards hold {count} runs, the sweep has {n_runs}: a shard is incomplete"

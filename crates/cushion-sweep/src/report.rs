@@ -230,7 +230,7 @@ fn load(dir: &Path) -> Result<Data, String> {
     let mut hydraulic_runs = 0usize;
     let mut n = 0usize;
     for_each_row(dir, &base_module, |m, v| {
-        let keep = n % every == 0;
+        let keep = n.is_multiple_of(every);
         n += 1;
         if let (Some(g), Some(groups)) = (dt.index(v[0]), sf.get_mut(m)) {
             groups[g].0.add(v[3], keep);
@@ -274,6 +274,9 @@ fn median(v: &mut [f64]) -> f64 {
     if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
 }
 
+/// One group on the chart: (x, min, median, max, lower quartile, upper quartile).
+type GroupStats = (f64, f64, f64, f64, f64, f64);
+
 type Draw<E> = Result<(), DrawingAreaErrorKind<E>>;
 
 fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
@@ -296,7 +299,7 @@ fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
         (&right, 1usize, "|peak robot force| [N]", "Peak robot force", 0usize),
     ] {
         // Per module and group: (x, min, median, max, lower quartile, upper quartile).
-        let mut stats: BTreeMap<&str, Vec<(f64, f64, f64, f64, f64, f64)>> = BTreeMap::new();
+        let mut stats: BTreeMap<&str, Vec<GroupStats>> = BTreeMap::new();
         // Modules side by side around each group's dead time, so their bars do not overlap.
         let gap = if centres.len() > 1 { (centres[1] - centres[0]) * 1e3 } else { 10.0 };
         let dodge = |k: usize| (k as f64 - (modules.len() as f64 - 1.0) / 2.0) * gap * 0.18;

@@ -159,7 +159,7 @@ mod tests {
         let text = "[sampling]\nmode = \"lhs\"\nsamples = 50\nseed = 3\n[[axis]]\nkey = \"object.mass\"\nrange = [0.0, 1.0]\n[[axis]]\nkey = \"hydraulic.gas_pressure\"\nrange = [300, 1e5]\nscale = \"log\"\n[[axis]]\nkey = \"module\"\nvalues = [\"hydraulic\", \"bistable\"]\n";
         let d = design(text);
         let d2 = design(text);
-        let mut strata = vec![false; 50];
+        let mut strata = [false; 50];
         let mut hydraulic = 0;
         for r in 0..50 {
             let p = d.point(r);
