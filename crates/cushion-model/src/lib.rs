@@ -72,6 +72,6 @@ pub mod summary;
 pub mod trajectory;
 
 pub use config::{ConfigError, Module, Scene};
-pub use simulate::{simulate, RunOptions, RunResult};
+pub use simulate::{simulate, simulate_with_ledger, EnergyLedger, RunOptions, RunResult};
 pub use summary::{Cell, RunStatus, SolverStats, Summary};
 pub use trajectory::{EventLogEntry, Trajectory, TrajectoryPoint};

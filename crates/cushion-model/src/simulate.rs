@@ -84,22 +84,48 @@ pub fn solver_options(scene: &Scene) -> SolverOptions {
 /// Run one scene. Never panics: an invalid scene gives status `invalid` with the validation
 /// message; a solver failure gives its status and message.
 pub fn simulate(scene: &Scene, opts: &RunOptions) -> RunResult {
+    simulate_with_ledger(scene, opts).0
+}
+
+/// The terms of the energy ledger at the end of a run (SPEC section 5), J.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnergyLedger {
+    /// Work done by the robot on the module, `int -F_r v_r dt`.
+    pub work: f64,
+    /// Change of the kinetic energy of tool and object.
+    pub kinetic: f64,
+    /// Change of the gas energy.
+    pub gas: f64,
+    /// Change of the elastic energy of contacts, stops and the bistable springs.
+    pub elastic: f64,
+    /// Dissipated: orifice, tool friction, contact damping, plane friction.
+    pub dissipated: f64,
+    /// `|work - (kinetic + gas + elastic + dissipated)|` over the largest term.
+    pub residual: f64,
+}
+
+/// [`simulate`], and the energy ledger's terms (`None` with the ledger off or bad input).
+pub fn simulate_with_ledger(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<EnergyLedger>) {
     if let Err(e) = scene.validate() {
-        return RunResult {
+        let r = RunResult {
             summary: Summary::invalid(e.to_string()),
             trajectory: None,
             events: Vec::new(),
         };
+        return (r, None);
     }
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| simulate_valid(scene, opts))) {
         Ok(r) => r,
-        Err(_) => RunResult {
-            summary: Summary::invalid(
-                "internal error: the model panicked (please report this scene)",
-            ),
-            trajectory: None,
-            events: Vec::new(),
-        },
+        Err(_) => {
+            let r = RunResult {
+                summary: Summary::invalid(
+                    "internal error: the model panicked (please report this scene)",
+                ),
+                trajectory: None,
+                events: Vec::new(),
+            };
+            (r, None)
+        }
     }
 }
 
@@ -166,7 +192,7 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
     Some((residual, [w, d_ke, d_gas, d_el, d_total]))
 }
 
-fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
+fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<EnergyLedger>) {
     let mut model = Model::new(scene);
     if opts.trajectory {
         model.start_recording(opts.sample_interval);
@@ -185,13 +211,14 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
         9 => run::<9>(&mut model, &sopts, t_end),
         10 => run::<10>(&mut model, &sopts, t_end),
         n => {
-            return RunResult {
+            let r = RunResult {
                 summary: Summary::invalid(format!(
                     "internal error: {n} states (at most {MAX_STATES})"
                 )),
                 trajectory: None,
                 events: Vec::new(),
-            }
+            };
+            return (r, None);
         }
     };
     model.refine_peaks();
@@ -252,7 +279,17 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
     } else if let Some(j) = l.object {
         impulse -= p.m_p * (y[j + 1] - model.y0[j + 1]);
     }
-    let energy_residual = energy_ledger(&model, t, &y).map(|(r, _)| r);
+    let ledger = energy_ledger(&model, t, &y).map(
+        |(residual, [work, kinetic, gas, elastic, dissipated])| EnergyLedger {
+            work,
+            kinetic,
+            gas,
+            elastic,
+            dissipated,
+            residual,
+        },
+    );
+    let energy_residual = ledger.map(|l| l.residual);
     let max_gas_pressure = match p.module {
         Module::Hydraulic => Some(physics::gas_pressure(
             p.p10,
@@ -308,9 +345,10 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> RunResult {
     });
     let mut events = std::mem::take(&mut model.log);
     events.sort_by(|a, b| a.t.total_cmp(&b.t));
-    RunResult {
+    let result = RunResult {
         summary,
         trajectory,
         events,
-    }
+    };
+    (result, ledger)
 }

@@ -243,9 +243,15 @@ fn energy_ledger_closes_for_each_module() {
         ),
     ];
     for (name, s) in cases {
-        let r = run(&tight(s));
+        let (r, ledger) = cushion_model::simulate_with_ledger(&tight(s), &RunOptions::default());
+        assert_eq!(r.summary.status, RunStatus::Ok);
         let res = r.summary.energy_residual.unwrap();
         assert!(res < 1e-6, "{name}: residual {res}");
+        // and to 1e-6 of the robot's work itself
+        let l = ledger.unwrap();
+        let mismatch = l.work - (l.kinetic + l.gas + l.elastic + l.dissipated);
+        assert!(mismatch.abs() < 1e-6 * l.work.abs(), "{name}: {l:?}");
+        assert!(l.dissipated > 0.0 && l.work.abs() > 1e-3, "{name}: {l:?}");
     }
     // and it is off (None) without the ledger
     let r = run(&with(Scene::default(), &[("energy.ledger", "false")]));
