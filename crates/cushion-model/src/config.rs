@@ -17,6 +17,8 @@
 //! | `solver.early_end` | stop once nothing can change any more (results extrapolated) | `true` |
 //! | `hydraulic.cavitation` | bound the main chamber pressure: `p_m >= cavitation_pressure` | `false` |
 //! | `hydraulic.cavitation_pressure` | `p_cav`, Pa | 0.0 |
+//! | `hydraulic.bulk_modulus` | liquid bulk modulus, Pa; > 0 selects the compressible model | 0.0 |
+//! | `hydraulic.chamber_volume` | main chamber liquid volume at `s = 0`, m^3 | 4e-5 |
 //!
 //! Parsing never validates combinations; [`Scene::validate`] does (and `simulate` calls it).
 //! Every error names the key, the value and what is allowed.
@@ -183,6 +185,14 @@ pub struct Hydraulic {
     pub cavitation: bool,
     /// `hydraulic.cavitation_pressure`: `p_cav`, Pa (in the frame of `p10`; < `gas_pressure`).
     pub cavitation_pressure: f64,
+    /// `hydraulic.bulk_modulus`: `beta`, liquid bulk modulus, Pa (>= 0). 0: the lumped,
+    /// incompressible model of SPEC section 2; > 0: the richer model of SPEC section 6, with the
+    /// main chamber pressure `p_m` and the volume moved through the orifice as states (stiff;
+    /// about 1.5e9 for oil). Extension.
+    pub bulk_modulus: f64,
+    /// `hydraulic.chamber_volume`: liquid volume of the main chamber at `s = 0`, m^3
+    /// (> `A_p * L`); used only with `bulk_modulus > 0`. Extension.
+    pub chamber_volume: f64,
 }
 
 /// `[bistable]`: the von Mises snap-through element (SPEC section 4).
@@ -282,6 +292,8 @@ impl Default for Scene {
                 gas_exponent: 1.4,
                 cavitation: false,
                 cavitation_pressure: 0.0,
+                bulk_modulus: 0.0,
+                chamber_volume: 4.0e-5,
             },
             bistable: Bistable {
                 spring_stiffness: 7022.0,
@@ -516,6 +528,8 @@ scene_keys! {
     "hydraulic.gas_exponent" => hydraulic.gas_exponent;
     "hydraulic.cavitation" => hydraulic.cavitation;
     "hydraulic.cavitation_pressure" => hydraulic.cavitation_pressure;
+    "hydraulic.bulk_modulus" => hydraulic.bulk_modulus;
+    "hydraulic.chamber_volume" => hydraulic.chamber_volume;
     "bistable.spring_stiffness" => bistable.spring_stiffness;
     "bistable.half_span" => bistable.half_span;
     "bistable.apex_rise" => bistable.apex_rise;
@@ -746,6 +760,17 @@ impl Scene {
         let k = h.gas_exponent;
         if !(k > 1.0 && k <= 2.0) {
             return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+        }
+        nonneg("hydraulic.bulk_modulus", h.bulk_modulus)?;
+        if h.chamber_volume - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.chamber_volume",
+                h.chamber_volume,
+                format!(
+                    "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                    format_float(a_p * l)
+                ),
+            ));
         }
         if h.cavitation_pressure >= h.gas_pressure {
             return Err(invalid(

@@ -2,10 +2,12 @@
 //!
 //! State layout (SPEC section 6, computed at run time; [`Layout`]):
 //! - tool `x_t, v_t` (hydraulic and bistable only: the rigid tool is the flange),
+//! - compressible liquid `p_m, V_x` (hydraulic with `hydraulic.bulk_modulus > 0` only),
 //! - object `x_p, v_p` (when `object.enabled`),
 //! - energy ledger quadratures (when `energy.ledger`): robot work, orifice dissipation
 //!   (hydraulic), tool friction dissipation (hydraulic, bistable), contact damping dissipation
 //!   (whenever a contact exists), plane friction dissipation (`object.plane_friction > 0`),
+//! - the liquid's compression energy (ledger on, compressible liquid),
 //! - `int F_c dt` (only with plane friction: the robot impulse then needs it; otherwise the
 //!   impulse follows exactly from momentum, `int F_r dt = -(m_t dv_t + m_p dv_p)`).
 //!
@@ -42,6 +44,10 @@ pub struct Layout {
     pub d_contact: Option<usize>,
     pub d_plane: Option<usize>,
     pub contact_impulse: Option<usize>,
+    /// Compressible liquid (SPEC section 6): `p_m` and the volume moved through the orifice.
+    pub liquid: Option<usize>,
+    /// Energy stored by compressing the liquid (ledger, with `liquid`).
+    pub e_liquid: Option<usize>,
 }
 
 impl Layout {
@@ -56,8 +62,12 @@ impl Layout {
         let rigid = scene.module == Module::Rigid;
         let obj = scene.object.enabled;
         let plane = obj && scene.object.plane_friction > 0.0;
+        let liquid = scene.module == Module::Hydraulic && scene.hydraulic.bulk_modulus > 0.0;
         if !rigid {
             l.tool = take(2);
+        }
+        if liquid {
+            l.liquid = take(2);
         }
         if obj {
             l.object = take(2);
@@ -75,6 +85,9 @@ impl Layout {
             }
             if plane {
                 l.d_plane = take(1);
+            }
+            if liquid {
+                l.e_liquid = take(1);
             }
         }
         if plane {
@@ -115,6 +128,9 @@ pub(crate) struct Params {
     pub dead_time: f64,
     /// Lower bound of the main chamber pressure (`None`: no cavitation model).
     pub p_cav: Option<f64>,
+    /// Liquid bulk modulus (Pa) and main chamber volume at `s = 0` (m^3), compressible model.
+    pub beta: f64,
+    pub v_m0: f64,
 }
 
 /// The discrete state of the run.
@@ -169,6 +185,11 @@ pub struct Eval {
     pub p_friction: f64,
     pub p_contact: f64,
     pub p_plane: f64,
+    /// Compressible model: flow through the orifice (m^3/s), `dp_m/dt` (Pa/s), and the power
+    /// stored in the liquid (W).
+    pub flow: f64,
+    pub dp_m: f64,
+    pub p_liquid: f64,
 }
 
 /// Penetration (m) at which a contact begins; it ends at zero (see `event_value`). Its force
@@ -195,6 +216,8 @@ pub(crate) struct Metrics {
     pub fwd_impacts: u32,
     pub back_impacts: u32,
     pub back_hit: bool,
+    /// Largest sampled gas pressure (compressible model; the lumped one uses `p1(max_stroke)`).
+    pub max_p1: f64,
 }
 
 /// The ODE system of one scene.
@@ -261,8 +284,10 @@ impl Model {
             h: bi.apex_rise,
             e: bi.offset,
             dead_time: scene.robot.dead_time,
-            p_cav: (scene.module == Module::Hydraulic && h.cavitation)
+            p_cav: (scene.module == Module::Hydraulic && h.cavitation && h.bulk_modulus == 0.0)
                 .then_some(h.cavitation_pressure),
+            beta: h.bulk_modulus,
+            v_m0: h.chamber_volume,
         };
         let from_rest = match scene.robot.start {
             RobotStart::Cruising => None,
@@ -302,6 +327,11 @@ impl Model {
         if let Some(j) = layout.object {
             y0[j] = x_t0 + scene.object.gap;
             y0[j + 1] = 0.0;
+        }
+        if let Some(q) = layout.liquid {
+            // at rest: the chamber at the gas pressure, the gas volume that of the lumped model
+            y0[q] = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s0);
+            y0[q + 1] = p.a_p * s0;
         }
         let regime = Regime {
             detected: false,
@@ -360,6 +390,7 @@ impl Model {
                 fwd_impacts: 0,
                 back_impacts: 0,
                 back_hit: false,
+                max_p1: f64::NEG_INFINITY,
             },
             log: Vec::new(),
             record: None,
@@ -390,6 +421,7 @@ impl Model {
         let e0 = m.eval(0.0, &y0, m.robot.current(), &m.regime);
         m.metrics.peak_fr = e0.f_r;
         m.metrics.peak_fc = e0.f_c;
+        m.metrics.max_p1 = e0.p1;
         m.y0 = y0;
         m
     }
@@ -437,6 +469,20 @@ impl Model {
             }
             f_stop = e.f_back - e.f_fwd;
             match p.module {
+                Module::Hydraulic if self.layout.liquid.is_some() => {
+                    // compressible liquid: p_m is a state; the orifice passes the flow its
+                    // pressure drop allows, dp = 0.5 c0 rho (Q/A_o)^2 sgn(Q)
+                    let q = self.layout.liquid.unwrap_or(0);
+                    let (p_m, v_x) = (y[q], y[q + 1]);
+                    e.p1 = physics::gas_pressure(p.p10, p.v_g0, 1.0, p.kappa, v_x);
+                    e.dp = p_m - e.p1;
+                    e.flow = e.dp.signum() * p.a_o * (2.0 * e.dp.abs() / (p.c0 * p.rho)).sqrt();
+                    let v_m = p.v_m0 - p.a_p * e.s;
+                    e.dp_m = p.beta / v_m * (p.a_p * e.sd - e.flow);
+                    e.f_module = p_m * p.a_p;
+                    e.p_orifice = e.dp * e.flow;
+                    e.p_liquid = p_m * (p.a_p * e.sd - e.flow);
+                }
                 Module::Hydraulic => {
                     e.p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, e.s);
                     e.dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, e.sd);
@@ -816,7 +862,11 @@ impl Model {
         let mut fr_best = (0usize, 0.0f64);
         let mut fc_best = (0usize, 0.0f64);
         let mut s_best = (0usize, f64::NEG_INFINITY);
+        let mut p1_best = f64::NEG_INFINITY;
         let mut consider = |k: usize, e: &Eval| {
+            if e.p1 > p1_best {
+                p1_best = e.p1;
+            }
             if e.f_r.abs() > fr_best.1.abs() {
                 fr_best = (k, e.f_r);
             }
@@ -849,6 +899,9 @@ impl Model {
             }
         }
         self.last_sample = Some((e1.f_r, e1.f_c, e1.s, e1.sd));
+        if p1_best > self.metrics.max_p1 {
+            self.metrics.max_p1 = p1_best;
+        }
         self.force_sample = self.force_sample.saturating_sub(1);
         // A new largest sample: remember its step; the peak inside it is refined once, at the
         // end of the run (`refine_peaks`).
@@ -901,8 +954,9 @@ impl Model {
 /// Samples of the physics per step (besides its start).
 const K: usize = 4;
 
-/// The largest state a scene can need (tool 2 + object 2 + ledger 5 + contact impulse 1).
-pub const MAX_STATES: usize = 10;
+/// The largest state a scene can need (tool 2 + liquid 2 + object 2 + ledger 6 + contact
+/// impulse 1).
+pub const MAX_STATES: usize = 13;
 
 /// A step that holds a peak candidate: its dense output as five equally spaced nodes.
 #[derive(Clone, Copy, Debug)]
@@ -1034,6 +1088,13 @@ impl<const N: usize> OdeSystem<N> for Model {
         }
         if let Some(k) = l.contact_impulse {
             dy[k] = e.f_c;
+        }
+        if let Some(q) = l.liquid {
+            dy[q] = e.dp_m;
+            dy[q + 1] = e.flow;
+        }
+        if let Some(k) = l.e_liquid {
+            dy[k] = e.p_liquid;
         }
         dy
     }

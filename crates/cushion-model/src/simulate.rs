@@ -160,7 +160,15 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
         let mut gas = 0.0;
         let mut el = 0.0;
         match p.module {
-            Module::Hydraulic => gas = physics::gas_energy(p.p10, p.v_g0, p.a_p, p.kappa, s),
+            Module::Hydraulic => {
+                gas = match l.liquid {
+                    Some(q) => physics::gas_energy(p.p10, p.v_g0, 1.0, p.kappa, y[q + 1]),
+                    None => physics::gas_energy(p.p10, p.v_g0, p.a_p, p.kappa, s),
+                };
+                if let Some(k) = l.e_liquid {
+                    el += y[k];
+                }
+            }
             Module::Bistable => el += physics::bistable_energy(p.k_b, p.w, p.h, s + p.e),
             Module::Rigid => {}
         }
@@ -210,6 +218,9 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         8 => run::<8>(&mut model, &sopts, t_end),
         9 => run::<9>(&mut model, &sopts, t_end),
         10 => run::<10>(&mut model, &sopts, t_end),
+        11 => run::<11>(&mut model, &sopts, t_end),
+        12 => run::<12>(&mut model, &sopts, t_end),
+        13 => run::<13>(&mut model, &sopts, t_end),
         n => {
             let r = RunResult {
                 summary: Summary::invalid(format!(
@@ -291,6 +302,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     );
     let energy_residual = ledger.map(|l| l.residual);
     let max_gas_pressure = match p.module {
+        Module::Hydraulic if l.liquid.is_some() => Some(model.metrics.max_p1),
         Module::Hydraulic => Some(physics::gas_pressure(
             p.p10,
             p.v_g0,

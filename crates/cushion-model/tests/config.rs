@@ -253,3 +253,10 @@ fn rejects_cavitation_pressure_above_gas_pressure() {
     let m = invalid_after("hydraulic.cavitation_pressure", "2000");
     assert!(m.contains("hydraulic.gas_pressure"), "{m}");
 }
+
+#[test]
+fn rejects_main_chamber_smaller_than_the_stroke_volume() {
+    let m = invalid_after("hydraulic.chamber_volume", "1e-5");
+    assert!(m.contains("stroke"), "{m}");
+    invalid_after("hydraulic.bulk_modulus", "-1");
+}

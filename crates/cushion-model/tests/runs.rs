@@ -889,3 +889,49 @@ fn extreme_scenes_end_with_a_status() {
         }
     }
 }
+
+/// SPEC section 6: the richer hydraulic model (compressible liquid, `p_m` a state) agrees with
+/// the lumped one over the impact, costs far more steps, and an explicit method finds it stiff.
+#[test]
+fn compressible_liquid_agrees_with_the_lumped_model_and_is_stiff() {
+    let lumped = with(paper("paper-hydraulic-dt70"), &[("t_end", "0.02")]);
+    let rich = with(lumped.clone(), &[("hydraulic.bulk_modulus", "1.5e9")]);
+    assert_eq!(Layout::of(&lumped).n + 3, Layout::of(&rich).n);
+    let a = run(&lumped).summary;
+    let (r, ledger) = cushion_model::simulate_with_ledger(&rich, &RunOptions::default());
+    let b = r.summary;
+    assert_eq!(b.status, RunStatus::Ok, "{}", b.message);
+    assert!(
+        close(a.peak_robot_force, b.peak_robot_force, 1e-3, 0.0),
+        "{} vs {}",
+        a.peak_robot_force,
+        b.peak_robot_force
+    );
+    assert!(close(a.peak_contact_force, b.peak_contact_force, 1e-3, 0.0));
+    assert!(close(a.max_stroke, b.max_stroke, 1e-4, 0.0));
+    assert!(close(
+        a.max_gas_pressure.unwrap(),
+        b.max_gas_pressure.unwrap(),
+        1e-4,
+        0.0
+    ));
+    assert_eq!(a.t_detect.is_some(), b.t_detect.is_some());
+    assert!(close(a.t_detect.unwrap(), b.t_detect.unwrap(), 1e-4, 0.0));
+    // the ledger (with the liquid's compression energy) still closes
+    let l = ledger.unwrap();
+    assert!(l.residual < 1e-6, "{l:?}");
+    // an explicit method pays for the stiffness, and says so
+    assert!(b.stats.stiff && !a.stats.stiff);
+    assert!(
+        b.stats.rhs_evals > 100 * a.stats.rhs_evals,
+        "{} vs {}",
+        b.stats.rhs_evals,
+        a.stats.rhs_evals
+    );
+    let stop = simulate(
+        &with(rich, &[("solver.stiffness", "stop")]),
+        &RunOptions::default(),
+    )
+    .summary;
+    assert_eq!(stop.status, RunStatus::Stiff);
+}
