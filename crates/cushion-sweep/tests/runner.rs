@@ -97,3 +97,24 @@ fn rows_in_run_order_for_any_thread_count_and_shards_partition() {
     let whole = String::from_utf8(outs[0].clone()).unwrap();
     assert_eq!(lines, whole.lines().skip(1).collect::<Vec<_>>());
 }
+
+#[test]
+fn final_files_do_not_depend_on_the_chunk_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut files = Vec::new();
+    for chunk in [1, 3, 7, 256] {
+        let sub = dir.path().join(format!("c{chunk}"));
+        fs::create_dir_all(&sub).unwrap();
+        let f = write_sweep(&sub, &BODY.replace("chunk_size = 3", &format!("chunk_size = {chunk}")));
+        let out = sub.join("o");
+        run_sweep_with(
+            &SweepOptions { file: f, out: Some(out.clone()), threads: Some(2), quiet: true, ..Default::default() },
+            &simulate,
+        )
+        .unwrap();
+        files.push((fs::read(out.join("summary.csv")).unwrap(), fs::read(out.join("summary.parquet")).unwrap()));
+    }
+    for f in &files[1..] {
+        assert!(f.0 == files[0].0 && f.1 == files[0].1);
+    }
+}
