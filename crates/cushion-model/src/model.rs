@@ -235,8 +235,10 @@ pub struct Model {
     pub(crate) log: Vec<EventLogEntry>,
     /// Recorded trajectory points (when asked).
     pub(crate) record: Option<Vec<TrajectoryPoint>>,
-    sample_interval: Option<f64>,
-    next_sample: f64,
+    pub(crate) sample_interval: Option<f64>,
+    /// Next uniform sample time, `(n_samples + 1) * sample_interval` (no accumulated rounding).
+    pub(crate) next_sample: f64,
+    n_samples: u64,
     pub(crate) early_end: Option<f64>,
     fr_peak_step: Option<PeakStep>,
     fc_peak_step: Option<PeakStep>,
@@ -396,6 +398,7 @@ impl Model {
             record: None,
             sample_interval: None,
             next_sample: 0.0,
+            n_samples: 0,
             early_end: None,
             fr_peak_step: None,
             fc_peak_step: None,
@@ -932,7 +935,8 @@ impl Model {
                     let ts = self.next_sample;
                     let e = self.eval(ts, step.at(ts).as_slice(), &seg, &r);
                     pts.push(to_point(ts, &e));
-                    self.next_sample += dt;
+                    self.n_samples += 1;
+                    self.next_sample = (self.n_samples + 1) as f64 * dt;
                 }
             }
             let e = self.eval(t1, y1, &seg, &r);

@@ -341,7 +341,31 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             stiff: out.stats.stiff,
         },
     };
+    // After an early end, the uniform samples up to t_end come from the exact extrapolation.
+    let mut tail = Vec::new();
+    if let (Some(te), Some(dt), true) = (
+        model.early_end,
+        model.sample_interval,
+        model.record.is_some(),
+    ) {
+        let mut k = (model.next_sample / dt).round() as u64;
+        loop {
+            let ts = k as f64 * dt;
+            if ts >= t_end {
+                break;
+            }
+            let mut yt = out.y.clone();
+            if let Some(j) = l.object {
+                if !(p.mu_n > 0.0 && model.regime.obj_stuck) {
+                    yt[j] += yt[j + 1] * (ts - te);
+                }
+            }
+            tail.push(model.point_at(ts, &yt));
+            k += 1;
+        }
+    }
     let trajectory = model.record.take().map(|mut pts| {
+        pts.extend(tail);
         if model.early_end.is_some() {
             pts.push(to_point(t, &e_end));
         }

@@ -47,7 +47,8 @@ pub struct Trajectory {
 /// Names: `sensor`, `brake`, `robot_stopped`, `robot_cruising` (end of acceleration),
 /// `object_contact_begin`, `object_contact_end`, `forward_stop_begin`, `forward_stop_end`,
 /// `back_stop_begin`, `back_stop_end`, `tool_stick`, `tool_slip`, `object_stick`,
-/// `object_slip`, `early_end`.
+/// `object_slip`, `cavitation_begin`, `cavitation_end` (with `hydraulic.cavitation`),
+/// `early_end`.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EventLogEntry {
     pub t: f64,

@@ -935,3 +935,27 @@ fn compressible_liquid_agrees_with_the_lumped_model_and_is_stiff() {
     .summary;
     assert_eq!(stop.status, RunStatus::Stiff);
 }
+
+#[test]
+fn early_end_trajectory_keeps_its_uniform_samples() {
+    let s = with(paper("paper-rigid"), &[]);
+    let r = run_traj(&s, 1e-3);
+    assert!(r.events.iter().any(|e| e.name == "early_end"));
+    let pts = &r.trajectory.unwrap().points;
+    let full = run_traj(&with(s, &[("solver.early_end", "false")]), 1e-3);
+    let fpts = &full.trajectory.unwrap().points;
+    for k in 1..300 {
+        let t = k as f64 * 1e-3;
+        let a = pts
+            .iter()
+            .find(|p| (p.t - t).abs() < 1e-12)
+            .expect("sample present");
+        let b = fpts.iter().find(|p| (p.t - t).abs() < 1e-12).unwrap();
+        assert!(
+            close(a.x_p, b.x_p, 1e-9, 1e-12) && close(a.v_p, b.v_p, 1e-9, 1e-12),
+            "t = {t}: {a:?} vs {b:?}"
+        );
+        assert!(close(a.x_r, b.x_r, 1e-12, 1e-12) && a.f_r == b.f_r);
+    }
+    assert_eq!(pts.last().unwrap().t, 0.3);
+}
