@@ -27,7 +27,7 @@
 //! of the run, by golden-section search.
 
 use crate::config::{Module, RobotStart, Scene};
-use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
+use crate::physics::{self, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
 
@@ -370,9 +370,7 @@ impl Model {
         if p.p_cav.is_some() {
             add(EV_CAVITATION);
         }
-        let rtol = scene.solver.rtol;
         let atol = scene.solver.atol;
-        let _ = rtol;
         let mut m = Model {
             p,
             layout,
@@ -1174,15 +1172,5 @@ impl<const N: usize> OdeSystem<N> for Model {
 
     fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
         self.observe_step(step, ctl);
-    }
-}
-
-/// Phase of the robot at the end (for the summary and tests).
-pub fn phase_name(p: Phase) -> &'static str {
-    match p {
-        Phase::Accelerating => "accelerating",
-        Phase::Cruising => "cruising",
-        Phase::Braking => "braking",
-        Phase::Stopped => "stopped",
     }
 }
