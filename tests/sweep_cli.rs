@@ -459,3 +459,19 @@ fn shipped_design_space_sweep_parses() {
     assert!(out.join("report-heatmap.svg").exists());
     assert!(out.join("report-speed-force.svg").exists());
 }
+
+#[test]
+fn shipped_reference_sweep_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("ref");
+    ok(&cushion(&["sweep", s(&root().join("sweeps/reference.toml")), "--out", s(&out), "--quiet"]));
+    let csv = fs::read_to_string(out.join("summary.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 5);
+    assert!(csv.lines().nth(4).unwrap().starts_with("3,0.07,100000.0,bistable,ok,"));
+    let bytes = fs::read(out.join("trajectories.mcap")).unwrap();
+    let mut topics = std::collections::BTreeSet::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        topics.insert(m.unwrap().channel.topic.clone());
+    }
+    assert_eq!(topics.into_iter().collect::<Vec<_>>(), ["/run/0/events", "/run/0/state", "/run/3/events", "/run/3/state"]);
+}
