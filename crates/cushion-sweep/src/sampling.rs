@@ -10,6 +10,9 @@ use toml::Value;
 use crate::sweep_file::{Axis, AxisValues, Mode, SweepFile};
 use cushion_model::Scene;
 
+/// The largest Latin hypercube (its strata hold 4 bytes per run and axis).
+pub const LHS_MAX_SAMPLES: u64 = 1 << 27;
+
 /// The sampling plan of a sweep file.
 #[derive(Clone, Debug)]
 pub struct Design {
@@ -31,8 +34,11 @@ impl Design {
         let n_runs = sweep.n_runs()?;
         let mut strata = Vec::new();
         if sweep.mode == Mode::Lhs {
-            if n_runs > u32::MAX as u64 {
-                return Err(format!("lhs takes at most {} samples", u32::MAX));
+            // The strata take 4 bytes per run and axis.
+            if n_runs > LHS_MAX_SAMPLES {
+                return Err(format!(
+                    "[sampling] samples = {n_runs}: lhs takes at most {LHS_MAX_SAMPLES} samples"
+                ));
             }
             for d in 0..sweep.axes.len() {
                 // Fisher-Yates with its own stream per axis.
