@@ -305,6 +305,7 @@ pub fn run_sweep_with(
     let chunks_done_now = AtomicUsize::new(0);
 
     let t_phase = Instant::now();
+    let mut write_seconds = 0.0;
     for c in &todo {
         let c = *c;
         let results: Vec<(u64, Vec<Value>, RunResult)> = pool.install(|| {
@@ -331,6 +332,7 @@ pub fn run_sweep_with(
                 })
                 .collect()
         });
+        let t_write = Instant::now();
         // Recorded trajectories first: the chunk's Parquet file is what marks it done.
         let recorded: Vec<&(u64, Vec<Value>, RunResult)> =
             results.iter().filter(|r| r.2.trajectory.is_some()).collect();
@@ -357,6 +359,7 @@ pub fn run_sweep_with(
         let batch = rows.finish();
         let path = chunk_path(c, "parquet");
         write_parquet_atomic(&path, &schema, std::iter::once(Ok(batch)))?;
+        write_seconds += t_write.elapsed().as_secs_f64();
         let done = chunks_done_now.fetch_add(1, Ordering::SeqCst) + 1;
         if abort_after == Some(done) {
             eprintln!("cushion sweep: {ABORT_ENV}={done}: stopping abruptly (test hook)");
@@ -368,6 +371,9 @@ pub fn run_sweep_with(
     }
 
     phase("runs and chunk files", t_phase);
+    if timing {
+        eprintln!("cushion sweep:   of which writing chunk files (serial): {write_seconds:.3} s");
+    }
     let t_phase = Instant::now();
     // Assemble the final files from the chunk files, in run order.
     let failed = assemble(&out_dir, &state_dir, &schema, n_chunks, sweep.record.any())?;
@@ -513,30 +519,32 @@ fn assemble(
     recorded: bool,
 ) -> Result<usize, SweepError> {
     let chunk_path = |c: u64, ext: &str| state_dir.join(format!("chunk-{c:08}.{ext}"));
-    let csv_path = out_dir.join("summary.csv");
-    let mut csv = AtomicFile::create(&csv_path).map_err(|e| io_err(csv_path.display(), e))?;
-    writeln!(csv.writer(), "{}", schema.csv_header()).map_err(|e| io_err(csv_path.display(), e))?;
-    let mut failed = 0usize;
-    let mut csv_result: Result<(), SweepError> = Ok(());
-    {
-        let csv_w = csv.writer();
-        let failed_ref = &mut failed;
-        let csv_res = &mut csv_result;
-        let batches = (0..n_chunks).flat_map(|c| match read_parquet(&chunk_path(c, "parquet")) {
+    let batches = || {
+        (0..n_chunks).flat_map(move |c| match read_parquet(&chunk_path(c, "parquet")) {
             Ok(it) => Box::new(it) as Box<dyn Iterator<Item = _>>,
             Err(e) => Box::new(std::iter::once(Err(e))),
-        });
-        let batches = batches.map(|b| {
+        })
+    };
+    // The CSV (text formatting) on a second thread while this one writes the Parquet file.
+    let csv_path = out_dir.join("summary.csv");
+    let write_csv = || -> Result<(usize, AtomicFile), SweepError> {
+        let mut csv = AtomicFile::create(&csv_path).map_err(|e| io_err(csv_path.display(), e))?;
+        writeln!(csv.writer(), "{}", schema.csv_header()).map_err(|e| io_err(csv_path.display(), e))?;
+        let mut failed = 0usize;
+        for b in batches() {
             let b = b?;
-            *failed_ref += count_failed_batch(&b);
-            if let Err(e) = write_csv_rows(csv_w, &b) {
-                *csv_res = Err(io_err("summary.csv", e));
-            }
-            Ok(b)
-        });
-        write_parquet_atomic(&out_dir.join("summary.parquet"), schema, batches)?;
-    }
-    csv_result?;
+            failed += count_failed_batch(&b);
+            write_csv_rows(csv.writer(), &b).map_err(|e| io_err(csv_path.display(), e))?;
+        }
+        Ok((failed, csv))
+    };
+    let (pq, csv) = std::thread::scope(|sc| {
+        let h = sc.spawn(write_csv);
+        let pq = write_parquet_atomic(&out_dir.join("summary.parquet"), schema, batches());
+        (pq, h.join())
+    });
+    pq?;
+    let (failed, csv) = csv.map_err(|_| SweepError::Io("summary.csv: writer thread panicked".into()))??;
     csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
 
     // Only when a run of this output was recorded (a shard may hold none of the listed runs).
