@@ -305,67 +305,59 @@ pub fn run_sweep_with(
     let chunks_done_now = AtomicUsize::new(0);
 
     let t_phase = Instant::now();
-    let mut write_seconds = 0.0;
-    for c in &todo {
-        let c = *c;
-        let results: Vec<(u64, Vec<Value>, RunResult)> = pool.install(|| {
-            runs_in(c)
-                .into_par_iter()
-                .map(|i| {
-                    let run = shard_run(i, shard);
-                    let point = design.point(run);
-                    let ropts = RunOptions {
-                        trajectory: sweep.record.wants(run),
-                        sample_interval: sweep.sample_interval,
-                    };
-                    let result = match design.scene(&sweep.base, &point) {
-                        Ok(scene) => match scene.validate() {
-                            Ok(()) => run_guarded(sim, &scene, &ropts),
-                            Err(e) => invalid(e.to_string()),
-                        },
-                        Err(e) => invalid(e),
-                    };
-                    if let Some(pb) = &progress {
-                        pb.inc(1);
-                    }
-                    (run, point, result)
-                })
-                .collect()
-        });
-        let t_write = Instant::now();
-        // Recorded trajectories first: the chunk's Parquet file is what marks it done.
-        let recorded: Vec<&(u64, Vec<Value>, RunResult)> =
-            results.iter().filter(|r| r.2.trajectory.is_some()).collect();
-        if !recorded.is_empty() {
-            let path = chunk_path(c, "mcap");
-            let mut f = AtomicFile::create(&path).map_err(|e| io_err(path.display(), e))?;
-            {
-                let mut w = crate::trajectory_mcap::write_options()
-                    .create(f.writer())
-                    .map_err(|e| io_err(path.display(), e))?;
-                for (run, _, r) in &recorded {
-                    let traj = r.trajectory.as_ref().expect("filtered");
-                    crate::trajectory_mcap::write_run(&mut w, &format!("/run/{run}"), traj, &r.events)
-                        .map_err(|e| io_err(path.display(), e))?;
+    // Chunks are computed one after another (runs inside a chunk share the pool), and each
+    // finished chunk is handed to a writer thread, so writing chunk k overlaps computing chunk
+    // k + 1. The writer takes chunks in order; at most one computed chunk waits for it.
+    type ChunkResults = Vec<(u64, Vec<Value>, RunResult)>;
+    let (to_writer, from_runner) = std::sync::mpsc::sync_channel::<(u64, ChunkResults)>(1);
+    let write_seconds = std::thread::scope(|scope| -> Result<f64, SweepError> {
+        let writer = scope.spawn(|| -> Result<f64, SweepError> {
+            let mut write_seconds = 0.0;
+            for (c, results) in from_runner {
+                let t_write = Instant::now();
+                write_chunk(&chunk_path(c, "mcap"), &chunk_path(c, "parquet"), &schema, &results)?;
+                write_seconds += t_write.elapsed().as_secs_f64();
+                let done = chunks_done_now.fetch_add(1, Ordering::SeqCst) + 1;
+                if abort_after == Some(done) {
+                    eprintln!("cushion sweep: {ABORT_ENV}={done}: stopping abruptly (test hook)");
+                    std::process::exit(99);
                 }
-                w.finish().map_err(|e| io_err(path.display(), e))?;
             }
-            f.commit().map_err(|e| io_err(path.display(), e))?;
+            Ok(write_seconds)
+        });
+        for c in &todo {
+            let c = *c;
+            let results: ChunkResults = pool.install(|| {
+                runs_in(c)
+                    .into_par_iter()
+                    .map(|i| {
+                        let run = shard_run(i, shard);
+                        let point = design.point(run);
+                        let ropts = RunOptions {
+                            trajectory: sweep.record.wants(run),
+                            sample_interval: sweep.sample_interval,
+                        };
+                        let result = match design.scene(&sweep.base, &point) {
+                            Ok(scene) => match scene.validate() {
+                                Ok(()) => run_guarded(sim, &scene, &ropts),
+                                Err(e) => invalid(e.to_string()),
+                            },
+                            Err(e) => invalid(e),
+                        };
+                        if let Some(pb) = &progress {
+                            pb.inc(1);
+                        }
+                        (run, point, result)
+                    })
+                    .collect()
+            });
+            if to_writer.send((c, results)).is_err() {
+                break; // the writer failed: its error is returned below
+            }
         }
-        let mut rows = RowsBuilder::new(&schema);
-        for (run, point, r) in &results {
-            rows.push(*run, point, &r.summary);
-        }
-        let batch = rows.finish();
-        let path = chunk_path(c, "parquet");
-        write_parquet_atomic(&path, &schema, std::iter::once(Ok(batch)))?;
-        write_seconds += t_write.elapsed().as_secs_f64();
-        let done = chunks_done_now.fetch_add(1, Ordering::SeqCst) + 1;
-        if abort_after == Some(done) {
-            eprintln!("cushion sweep: {ABORT_ENV}={done}: stopping abruptly (test hook)");
-            std::process::exit(99);
-        }
-    }
+        drop(to_writer);
+        writer.join().unwrap_or_else(|_| Err(SweepError::Io("the chunk writer thread panicked".into())))
+    })?;
     if let Some(pb) = &progress {
         pb.finish_and_clear();
     }
@@ -407,6 +399,41 @@ pub fn run_sweep_with(
 /// value), which is always a sweep-file error.
 fn first_bad_is_set_error(design: &Design, sweep: &SweepFile, point: &[Value]) -> bool {
     design.scene(&sweep.base, point).is_err()
+}
+
+/// Write one finished chunk: its recorded trajectories (if any) to `mcap_path`, then its rows
+/// to `parquet_path`. The Parquet file is written last: its presence marks the chunk done.
+fn write_chunk(
+    mcap_path: &Path,
+    parquet_path: &Path,
+    schema: &TableSchema,
+    results: &[(u64, Vec<Value>, RunResult)],
+) -> Result<(), SweepError> {
+    let recorded: Vec<&(u64, Vec<Value>, RunResult)> =
+        results.iter().filter(|r| r.2.trajectory.is_some()).collect();
+    if !recorded.is_empty() {
+        let path = mcap_path;
+        let mut f = AtomicFile::create(path).map_err(|e| io_err(path.display(), e))?;
+        {
+            let mut w = crate::trajectory_mcap::write_options()
+                .create(f.writer())
+                .map_err(|e| io_err(path.display(), e))?;
+            for (run, _, r) in &recorded {
+                if let Some(traj) = r.trajectory.as_ref() {
+                    crate::trajectory_mcap::write_run(&mut w, &format!("/run/{run}"), traj, &r.events)
+                        .map_err(|e| io_err(path.display(), e))?;
+                }
+            }
+            w.finish().map_err(|e| io_err(path.display(), e))?;
+        }
+        f.commit().map_err(|e| io_err(path.display(), e))?;
+    }
+    let mut rows = RowsBuilder::new(schema);
+    for (run, point, r) in results {
+        rows.push(*run, point, &r.summary);
+    }
+    let batch = rows.finish();
+    write_parquet_atomic(parquet_path, schema, std::iter::once(Ok(batch)))
 }
 
 fn invalid(message: String) -> RunResult {
