@@ -308,11 +308,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             let cut = action != EventAction::Continue;
             let (t_new, mut y_new) = if cut { (t_cut, y_cut) } else { (t1, attempt.y1) };
 
-            self.record_output(Some(&dense), t_new, &if cut { dense.eval(t_new) } else { y_new });
-            {
-                let step = Step { t0: t, t1: t_new, y0: &y, y1: &if cut { dense.eval(t_new) } else { y_new }, dense: &dense };
-                self.sys.on_step(&step, &mut ctl);
-            }
+            // The step as it ended, before any handler changed the state.
+            let y_end = if cut { dense.eval(t_new) } else { y_new };
+            self.record_output(Some(&dense), t_new, &y_end);
+            self.sys.on_step(&Step { t0: t, t1: t_new, y0: &y, y1: &y_end, dense: &dense }, &mut ctl);
             self.t = t_new;
             self.y = y_new;
             self.take_new_stops(&mut ctl);
@@ -322,13 +321,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             if cut {
                 // State or regime changed: evaluate f anew and select the step size anew.
-                self.f = self.rhs(t_new, &y_new);
-                if !self.f.iter().all(|v| v.is_finite()) {
+                if !self.restart_at(t_new, &y_new) {
                     return self.finish(Status::NonFinite, format!("f is not finite after the event at t = {t_new}"));
                 }
-                let mut g = [0.0; MAX_EVENTS];
-                self.eval_events(t_new, &y_new, &mut g);
-                self.g = g;
                 if adaptive {
                     controller.reset();
                     h = self.select_step(stepper.order(), h_max).min(h_new.max(h));
@@ -351,15 +346,21 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 if action == EventAction::Stop || ctl.stop_requested {
                     return self.finish(Status::StoppedByEvent, "");
                 }
-                self.f = self.rhs(t_new, &y_new);
-                if !self.f.iter().all(|v| v.is_finite()) {
+                if !self.restart_at(t_new, &y_new) {
                     return self.finish(Status::NonFinite, format!("f is not finite at the time stop t = {t_new}"));
                 }
-                let mut g = [0.0; MAX_EVENTS];
-                self.eval_events(t_new, &y_new, &mut g);
-                self.g = g;
             }
         }
+    }
+
+    /// After a handler (event or time stop) at `(t, y)`: evaluate `f` and the event functions
+    /// anew there. Returns false if `f` is not finite.
+    fn restart_at(&mut self, t: f64, y: &State<N>) -> bool {
+        self.f = self.rhs(t, y);
+        let mut g = [0.0; MAX_EVENTS];
+        self.eval_events(t, y, &mut g);
+        self.g = g;
+        self.f.iter().all(|v| v.is_finite())
     }
 
     /// Hairer's initial step selection from the current state (one evaluation).
