@@ -15,6 +15,7 @@
 //! | `solver.fixed_step` | step of the fixed-step methods `rk4`, `euler`, s | 1e-5 |
 //! | `solver.stiffness` | Hairer's stiffness test: `warn`, `stop` or `off` | `"warn"` |
 //! | `solver.early_end` | stop once nothing can change any more (results extrapolated) | `true` |
+//! | `solver.ringing_tail` | with `early_end`: once only the tool's small ringing on its stop is left, write it in closed form | `true` |
 //! | `hydraulic.cavitation` | bound the main chamber pressure: `p_m >= cavitation_pressure` | `false` |
 //! | `hydraulic.cavitation_pressure` | `p_cav`, Pa | 0.0 |
 //! | `hydraulic.bulk_modulus` | liquid bulk modulus, Pa; > 0 selects the compressible model | 0.0 |
@@ -225,6 +226,9 @@ pub struct Solver {
     pub stiffness: StiffnessAction,
     /// `solver.early_end`: end the run once nothing can change any more. Extension.
     pub early_end: bool,
+    /// `solver.ringing_tail`: with `early_end`, end the run once only the tool's small ringing on
+    /// its stop is left and write that ringing in closed form (`ringing_tail.rs`). Extension.
+    pub ringing_tail: bool,
 }
 
 /// `[energy]`: the energy ledger.
@@ -309,6 +313,7 @@ impl Default for Scene {
                 fixed_step: 1e-5,
                 stiffness: StiffnessAction::Warn,
                 early_end: true,
+                ringing_tail: true,
             },
             energy: Energy { ledger: true },
         }
@@ -541,6 +546,7 @@ scene_keys! {
     "solver.fixed_step" => solver.fixed_step;
     "solver.stiffness" => solver.stiffness;
     "solver.early_end" => solver.early_end;
+    "solver.ringing_tail" => solver.ringing_tail;
     "energy.ledger" => energy.ledger;
 }
 

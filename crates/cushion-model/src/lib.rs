@@ -77,6 +77,8 @@
 pub mod config;
 pub mod model;
 pub mod physics;
+mod ringing;
+mod ringing_tail;
 pub mod simulate;
 pub mod summary;
 pub mod trajectory;

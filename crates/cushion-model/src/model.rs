@@ -240,6 +240,13 @@ pub struct Model {
     pub(crate) next_sample: f64,
     n_samples: u64,
     pub(crate) early_end: Option<f64>,
+    /// The tool's ringing in closed form after an early end (`ringing_tail.rs`).
+    pub(crate) ringing_tail: Option<crate::ringing_tail::RingingTail>,
+    pub(crate) ringing_tail_enabled: bool,
+    /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
+    pub(crate) ringing_max_amplitude: f64,
+    /// No ringing-tail check before this time (they cost a few dozen evaluations).
+    pub(crate) next_ringing_check: f64,
     fr_peak_step: Option<PeakStep>,
     fc_peak_step: Option<PeakStep>,
     s_peak_step: Option<PeakStep>,
@@ -248,7 +255,7 @@ pub struct Model {
     /// Steps still to sample in full (set by events and time stops).
     force_sample: u8,
     early_end_enabled: bool,
-    t_end: f64,
+    pub(crate) t_end: f64,
     settle_v: f64,
     settle_a: f64,
     pub(crate) y0: Vec<f64>,
@@ -398,6 +405,10 @@ impl Model {
             next_sample: 0.0,
             n_samples: 0,
             early_end: None,
+            ringing_tail: None,
+            ringing_tail_enabled: scene.solver.early_end && scene.solver.ringing_tail,
+            ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
+            next_ringing_check: 0.0,
             fr_peak_step: None,
             fc_peak_step: None,
             s_peak_step: None,
@@ -771,14 +782,16 @@ impl Model {
     /// Whether nothing can change any more after `(t, y)`: the robot stands, the tool has
     /// settled (stuck, or relative speed and acceleration at the tolerance's level) and the
     /// object is out of contact and either stuck on the plane or free and not slower than the
-    /// tool. Then the run may end early with its final values extrapolated exactly.
-    fn can_end_early(&self, t: f64, y: &[f64]) -> bool {
+    /// tool. Then the run may end early with its final values extrapolated exactly. Failing
+    /// that, the run may still end if only the tool's small ringing on its stop is left, written
+    /// in closed form (`ringing_tail.rs`).
+    fn can_end_early(&mut self, t: f64, y: &[f64]) -> bool {
         if !(self.early_end_enabled
             && t < self.t_end
             && self.robot.stopped()
             && !self.regime.obj_contact)
         {
-            return false;
+            return t < self.t_end && self.try_ringing_tail(t, y);
         }
         let seg = *self.robot.current();
         let e = self.eval(t, y, &seg, &self.regime);
@@ -799,7 +812,7 @@ impl Model {
                 }
             }
         };
-        tool_settled && object_done
+        (tool_settled && object_done) || self.try_ringing_tail(t, y)
     }
 
     /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest samples,

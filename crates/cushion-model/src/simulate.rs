@@ -247,15 +247,24 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     } else {
         out.message.clone()
     };
-    // Final state; extrapolated exactly to t_end after an early end.
+    // Final state; extrapolated to t_end after an early end (exactly, or by the ringing tail's
+    // closed form).
     let mut y = out.y.clone();
     let mut t = out.t;
     if let Some(te) = model.early_end {
-        let l = model.layout;
-        if let Some(j) = l.object {
-            if !(model.p.mu_n > 0.0 && model.regime.obj_stuck) {
-                y[j] += y[j + 1] * (t_end - te);
-            }
+        if let Some(ts) = model.ringing_tail.as_ref().and_then(|r| r.robot_stop()) {
+            model.robot.on_time(ts);
+            let yk = model.extrapolated(te, &out.y, ts);
+            let point = model.point_at(ts, &yk);
+            model.log.push(EventLogEntry {
+                t: ts,
+                name: "robot_stopped".into(),
+                point,
+            });
+        }
+        y = model.extrapolated(te, &out.y, t_end);
+        if model.ringing_tail.is_some() {
+            close_ledger_after_tail(&model, te, &out.y, t_end, &mut y);
         }
         t = t_end;
         let pt = model.point_at(te, &out.y);
@@ -341,27 +350,30 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             stiff: out.stats.stiff,
         },
     };
-    // After an early end, the uniform samples up to t_end come from the exact extrapolation.
+    // After an early end, the uniform samples up to t_end come from the extrapolation; without
+    // uniform samples, a ringing tail is drawn with 16 points per period.
     let mut tail = Vec::new();
-    if let (Some(te), Some(dt), true) = (
-        model.early_end,
-        model.sample_interval,
-        model.record.is_some(),
-    ) {
-        let mut k = (model.next_sample / dt).round() as u64;
-        loop {
-            let ts = k as f64 * dt;
-            if ts >= t_end {
-                break;
+    if let (Some(te), true) = (model.early_end, model.record.is_some()) {
+        let spacing = match (model.sample_interval, &model.ringing_tail) {
+            (Some(dt), _) => Some((dt, (model.next_sample / dt).round() as u64)),
+            (None, Some(r)) => {
+                let w0 = r.pieces.last().map_or(1.0, |p| p.ring.w0);
+                let dt = 2.0 * std::f64::consts::PI / w0 / 16.0;
+                Some((dt, (te / dt).floor() as u64 + 1))
             }
-            let mut yt = out.y.clone();
-            if let Some(j) = l.object {
-                if !(p.mu_n > 0.0 && model.regime.obj_stuck) {
-                    yt[j] += yt[j + 1] * (ts - te);
+            (None, None) => None,
+        };
+        if let Some((dt, mut k)) = spacing {
+            loop {
+                let ts = k as f64 * dt;
+                if ts >= t_end {
+                    break;
                 }
+                if ts > te {
+                    tail.push(model.point_at(ts, &model.extrapolated(te, &out.y, ts)));
+                }
+                k += 1;
             }
-            tail.push(model.point_at(ts, &yt));
-            k += 1;
         }
     }
     let trajectory = model.record.take().map(|mut pts| {
@@ -387,4 +399,29 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         events,
     };
     (result, ledger)
+}
+
+/// After a ringing tail: add the robot's work during it (exact) and close the ledger with the
+/// dissipation, so that the residual is that of the integrated part.
+fn close_ledger_after_tail(model: &Model, te: f64, y_te: &[f64], t_end: f64, y: &mut [f64]) {
+    let l = model.layout;
+    let Some(k_work) = l.work else {
+        return;
+    };
+    y[k_work] += model.ringing_tail_work(t_end);
+    let (Some((_, a)), Some((_, b))) = (
+        energy_ledger(model, te, y_te),
+        energy_ledger(model, t_end, y),
+    ) else {
+        return;
+    };
+    let stored = |v: &[f64; 5]| v[1] + v[2] + v[3];
+    let dissipated = (b[0] - a[0]) - (stored(&b) - stored(&a));
+    if let Some(k) = [l.d_contact, l.d_friction, l.d_orifice]
+        .into_iter()
+        .flatten()
+        .next()
+    {
+        y[k] += dissipated;
+    }
 }

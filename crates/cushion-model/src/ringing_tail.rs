@@ -1,0 +1,327 @@
+//! Ringing tail: the end of a run in closed form, once only the tool's ringing is left.
+//!
+//! After an impact the tool returns onto the end-stop that holds it and rings there, lightly
+//! damped (paper scene: ~78 Hz, damping ratio ~0.07), until `t_end`. An explicit method follows
+//! each period with ~15 steps: 300 of the paper scene's 360 steps. Once
+//!
+//! - the robot brakes or stands (its motion to `t_end` is known),
+//! - the object can never be touched again (absent; or out of contact, free, at least as fast as
+//!   the robot and ahead of anything the tool can reach; or resting on the plane out of reach),
+//! - the tool is held by exactly one stop, without dry friction, and rings about that robot
+//!   segment's equilibrium with an amplitude below [`MAX_AMPLITUDE`] of the stop's depth,
+//!   small enough that no summary value can change (no new peak of `|F_r|` or stroke, the stop
+//!   contact never opens, no cavitation),
+//!
+//! the run ends and the tool's motion is written as a weakly nonlinear oscillator in the robot's
+//! frame (`ringing.rs`) about each remaining robot segment's equilibrium, with the coefficients
+//! taken by finite differences from the model's own force law. The final state, the robot
+//! impulse (from momentum), the robot's stop on the way and the trajectory's samples come from
+//! it; the energy ledger's work is exact (`W = m a_r dx_r - m [sd v_r] + m a_r ds` per segment)
+//! and the dissipation closes it.
+
+use crate::config::Module;
+use crate::model::{Model, MAX_STATES};
+use crate::physics::{self, Phase, Segment};
+use crate::ringing::{Coefficients, Ringing};
+
+/// Largest ringing amplitude handed to the closed form, as a fraction of the holding stop's
+/// depth at equilibrium, at `rtol`: `0.3 sqrt(rtol / 1e-6)` within `[0.003, 0.3]`. The closed
+/// form's error grows with it (`ringing.rs`); at 0.3 and rtol 1e-6 it changes the summary of the
+/// paper scenes by less than the integration error itself (`examples/ringing_tail_check.rs`).
+pub(crate) fn max_amplitude(rtol: f64) -> f64 {
+    (0.3 * (rtol / 1e-6).sqrt()).clamp(0.003, 0.3)
+}
+
+/// The ringing about one robot segment's equilibrium.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Piece {
+    pub t0: f64,
+    /// Equilibrium stroke (m) and robot acceleration (m/s^2) of the segment.
+    pub s_eq: f64,
+    pub a_r: f64,
+    pub ring: Ringing,
+}
+
+/// The tool's motion from `t_start` to the end of the run.
+#[derive(Clone, Debug)]
+pub(crate) struct RingingTail {
+    /// One piece per robot segment left (braking, then standing); in time order.
+    pub pieces: Vec<Piece>,
+}
+
+impl RingingTail {
+    /// Stroke `s` (m) and its rate `sd` (m/s) at `t` after the early end.
+    pub fn stroke_at(&self, t: f64) -> (f64, f64) {
+        let p = self
+            .pieces
+            .iter()
+            .rev()
+            .find(|p| t >= p.t0)
+            .unwrap_or(&self.pieces[0]);
+        let (u, v) = p.ring.state(t);
+        (p.s_eq + u, v)
+    }
+
+    /// The robot's stop inside the tail, if there is one.
+    pub fn robot_stop(&self) -> Option<f64> {
+        self.pieces.get(1).map(|p| p.t0)
+    }
+}
+
+impl Model {
+    /// The module's force on the tool `G` (N, + forward) at stroke `s` and rate `sd`, the rest of
+    /// the state as in `y` (same regime).
+    fn tool_force(&self, t: f64, y: &[f64], seg: &Segment, s: f64, sd: f64) -> f64 {
+        let n = self.layout.n.clamp(1, MAX_STATES);
+        let mut z = [0.0; MAX_STATES];
+        z[..n].copy_from_slice(&y[..n]);
+        let i = self.layout.tool.unwrap_or(0);
+        let (x_r, v_r, _) = seg.at(t);
+        z[i] = x_r - s;
+        z[i + 1] = v_r - sd;
+        self.eval(t, &z[..n], seg, &self.regime).g
+    }
+
+    /// Depth of the holding stop at stroke `s` (m; > 0 in contact).
+    fn holding_depth(&self, s: f64) -> f64 {
+        if self.regime.fwd {
+            -s
+        } else {
+            s - self.p.stroke
+        }
+    }
+
+    /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
+    /// acceleration `a_r`; `None` if the tool has no such equilibrium on its stop or rings too
+    /// strongly for the closed form.
+    fn ringing_piece(
+        &self,
+        t: f64,
+        y: &[f64],
+        seg: &Segment,
+        a_r: f64,
+        s: f64,
+        sd: f64,
+    ) -> Option<Piece> {
+        let m = self.p.m_t;
+        let h = |s: f64| self.tool_force(t, y, seg, s, 0.0) - m * a_r;
+        // equilibrium: Newton from the current stroke, kept on the stop
+        let mut s_eq = s;
+        let mut converged = false;
+        for _ in 0..40 {
+            let depth = self.holding_depth(s_eq);
+            if !(depth > 0.0) {
+                return None;
+            }
+            let ds = 1e-6 * depth;
+            let slope = (h(s_eq + ds) - h(s_eq - ds)) / (2.0 * ds);
+            if !(slope > 0.0) {
+                return None;
+            }
+            let mut step = -h(s_eq) / slope;
+            while self.holding_depth(s_eq + step) <= 0.0 {
+                step *= 0.5;
+            }
+            s_eq += step;
+            if step.abs() <= 1e-11 * depth {
+                converged = true;
+                break;
+            }
+        }
+        let depth = self.holding_depth(s_eq);
+        if !converged || !(depth > 0.0) {
+            return None;
+        }
+        // stiffness terms by central differences of the static force, damping terms from its
+        // rate dependence (linear: viscous, contact damping; quadratic: orifice)
+        let d = 0.01 * depth;
+        let (hp, hm, hp2, hm2, h0) = (
+            h(s_eq + d),
+            h(s_eq - d),
+            h(s_eq + 2.0 * d),
+            h(s_eq - 2.0 * d),
+            h(s_eq),
+        );
+        let k1 = (hp - hm) / (2.0 * d);
+        let k2 = (hp - 2.0 * h0 + hm) / (2.0 * d * d);
+        let k3 = (hp2 - 2.0 * hp + 2.0 * hm - hm2) / (12.0 * d * d * d);
+        let v = 0.01 * depth * (k1.max(0.0) / m).sqrt();
+        let g = |sd: f64| self.tool_force(t, y, seg, s_eq, sd);
+        let d1 = 0.5 * (g(v) - g(-v));
+        let d2 = 0.5 * (g(2.0 * v) - g(-2.0 * v));
+        let c = (4.0 * d1 - d2) / (2.0 * v);
+        let q = ((d2 - 2.0 * d1) / (2.0 * v * v)).max(0.0);
+        let coef = Coefficients {
+            m,
+            c,
+            q,
+            k1,
+            k2,
+            k3,
+        };
+        let ring = Ringing::through(&coef, t, s - s_eq, sd)?;
+        if !(ring.reach() <= self.ringing_max_amplitude * depth) {
+            return None;
+        }
+        Some(Piece {
+            t0: t,
+            s_eq,
+            a_r,
+            ring,
+        })
+    }
+
+    /// Whether the rest of the run may be written as the tool's ringing from `(t, y)` (see the
+    /// module docs); stores the tail when it may.
+    pub(crate) fn try_ringing_tail(&mut self, t: f64, y: &[f64]) -> bool {
+        let p = &self.p;
+        let r = &self.regime;
+        let seg = *self.robot.current();
+        let quiet = self.ringing_tail_enabled
+            && t >= self.next_ringing_check
+            && matches!(p.module, Module::Hydraulic | Module::Bistable)
+            && self.layout.tool.is_some()
+            && self.layout.liquid.is_none()
+            && p.d == 0.0
+            && !r.tool_stuck
+            && !r.cavitating
+            && !r.obj_contact
+            && (r.fwd != r.back)
+            && matches!(seg.phase, Phase::Braking | Phase::Stopped);
+        if !quiet {
+            return false;
+        }
+        let (x_r, v_r, a_r) = seg.at(t);
+        let i = self.layout.tool.unwrap_or(0);
+        let (s, sd) = (x_r - y[i], v_r - y[i + 1]);
+        let Some(first) = self.ringing_piece(t, y, &seg, a_r, s, sd) else {
+            // look again once the ringing may have decayed enough: a tenth of a period on
+            self.next_ringing_check = t + 0.1 * self.ringing_period_guess();
+            return false;
+        };
+        let mut pieces = vec![first];
+        if seg.phase == Phase::Braking {
+            if let Some(t_stop) = self.robot.t_stop.filter(|&ts| ts < self.t_end) {
+                let (s1, sd1) = RingingTail {
+                    pieces: pieces.clone(),
+                }
+                .stroke_at(t_stop);
+                let stopped = Segment {
+                    t0: t_stop,
+                    x0: seg.at(t_stop).0,
+                    v0: 0.0,
+                    a: 0.0,
+                    phase: Phase::Stopped,
+                };
+                match self.ringing_piece(t_stop, y, &stopped, 0.0, s1, sd1) {
+                    Some(second) => pieces.push(second),
+                    None => {
+                        // the robot's stop shakes the tool too much: integrate across it
+                        self.next_ringing_check = t_stop;
+                        return false;
+                    }
+                }
+            }
+        }
+        let tail = RingingTail { pieces };
+        if !self.tail_changes_nothing(t, y, &seg, &tail) {
+            self.next_ringing_check = t + self.ringing_period_guess();
+            return false;
+        }
+        self.ringing_tail = Some(tail);
+        true
+    }
+
+    /// A period of the tool on its stop (s), for spacing the checks.
+    fn ringing_period_guess(&self) -> f64 {
+        let k = 1.5 * self.p.k_e * (1e-4f64).sqrt();
+        2.0 * std::f64::consts::PI * (self.p.m_t / k).sqrt()
+    }
+
+    /// No summary value can change during the tail: `|F_r|` stays below its peak, the stroke
+    /// below its maximum, the stop contact stays closed, the object is never reached, no
+    /// cavitation.
+    fn tail_changes_nothing(&self, t: f64, y: &[f64], seg: &Segment, tail: &RingingTail) -> bool {
+        let p = &self.p;
+        let m = &self.metrics;
+        let mut s_lo = f64::INFINITY;
+        for pc in &tail.pieces {
+            let reach = 1.5 * pc.ring.reach();
+            let speed = 1.5 * pc.ring.speed_bound();
+            let depth = self.holding_depth(pc.s_eq);
+            if !(reach < 0.5 * depth) || !(pc.s_eq + reach < m.max_stroke) {
+                return false;
+            }
+            // |F_r| = |G| = |m a_r + K1 u + ...| (no object contact)
+            let w0 = pc.ring.w0;
+            let f_bound =
+                p.m_t * (pc.a_r.abs() + 1.5 * w0 * w0 * reach + 2.0 * pc.ring.zeta * w0 * speed);
+            if !(f_bound < 0.9 * m.peak_fr.abs()) {
+                return false;
+            }
+            if let Some(p_cav) = p.p_cav {
+                let p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, pc.s_eq - reach);
+                let dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, speed);
+                if !(p1 - dp.abs() > p_cav) {
+                    return false;
+                }
+            }
+            s_lo = s_lo.min(pc.s_eq - reach);
+        }
+        match self.layout.object {
+            None => true,
+            Some(j) => {
+                let (x_r, v_r, _) = seg.at(t);
+                let x_r_final = match self.robot.t_stop {
+                    Some(ts) if seg.phase == Phase::Braking => seg.at(ts).0,
+                    _ => x_r,
+                };
+                let (x_p, v_p) = (y[j], y[j + 1]);
+                let free_and_away = p.mu_n == 0.0 && v_p >= v_r.max(0.0) && x_p > x_r - s_lo;
+                let resting = (p.mu_n == 0.0 && v_p >= 0.0) || self.regime.obj_stuck;
+                free_and_away || (resting && x_p > x_r_final - s_lo)
+            }
+        }
+    }
+}
+
+impl Model {
+    /// The state at `t` after an early end at `(te, y_te)`: the object in free flight (or at rest),
+    /// the tool ringing in closed form (or at rest); the ledger's states as at `te`.
+    pub(crate) fn extrapolated(&self, te: f64, y_te: &[f64], t: f64) -> Vec<f64> {
+        let mut y = y_te.to_vec();
+        let l = self.layout;
+        if let Some(j) = l.object {
+            if !(self.p.mu_n > 0.0 && self.regime.obj_stuck) {
+                y[j] += y[j + 1] * (t - te);
+            }
+        }
+        if let (Some(tail), Some(i)) = (&self.ringing_tail, l.tool) {
+            let (s, sd) = tail.stroke_at(t);
+            let (x_r, v_r, _) = self.robot.segment_at(t).at(t);
+            y[i] = x_r - s;
+            y[i + 1] = v_r - sd;
+        }
+        y
+    }
+
+    /// The robot's work on the module during the ringing tail, J: per segment of constant `a_r`,
+    /// `int G v_r dt` with `G = m (a_r - s'')` is `m a_r dx_r - m [sd v_r] + m a_r ds`.
+    pub(crate) fn ringing_tail_work(&self, t_end: f64) -> f64 {
+        let Some(tail) = &self.ringing_tail else {
+            return 0.0;
+        };
+        let m = self.p.m_t;
+        let mut w = 0.0;
+        for (k, pc) in tail.pieces.iter().enumerate() {
+            let t1 = tail.pieces.get(k + 1).map_or(t_end, |n| n.t0);
+            let seg = *self.robot.segment_at(pc.t0);
+            let (x0, v0, _) = seg.at(pc.t0);
+            let (x1, v1, _) = seg.at(t1);
+            let (u0, sd0) = pc.ring.state(pc.t0);
+            let (u1, sd1) = pc.ring.state(t1);
+            w += m * pc.a_r * (x1 - x0) - m * (sd1 * v1 - sd0 * v0) + m * pc.a_r * (u1 - u0);
+        }
+        w
+    }
+}
