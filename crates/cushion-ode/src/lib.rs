@@ -16,6 +16,7 @@
 
 pub mod controller;
 pub mod dense;
+pub mod dopri5;
 pub mod events;
 mod norm;
 pub mod options;

@@ -3,6 +3,7 @@
 
 use crate::controller::{initial_step, PiController};
 use crate::dense::DenseOutput;
+use crate::dopri5::Dopri5;
 use crate::events::locate;
 use crate::norm::Weights;
 use crate::options::{Method, Output, SolverOptions, StiffnessAction, Tolerance};
@@ -10,7 +11,7 @@ use crate::solution::{EventRecord, Solution, Stats, Status};
 use crate::stepper::{ExplicitRk, Stepper};
 use crate::stiffness::StiffnessDetector;
 use crate::system::{Control, EventAction, OdeSystem, Step, MAX_EVENTS};
-use crate::tableau::{CLASSICAL_RK4, DORMAND_PRINCE_54, EXPLICIT_EULER};
+use crate::tableau::{CLASSICAL_RK4, EXPLICIT_EULER};
 use crate::State;
 
 /// Integrate `sys` from `(t0, y0)` to `t_end` with the settings `opts`. Never panics on bad
@@ -22,13 +23,13 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     t_end: f64,
     opts: &SolverOptions,
 ) -> Solution<N> {
-    let tab = match opts.method {
-        Method::Dp5 => &DORMAND_PRINCE_54,
-        Method::Rk4 => &CLASSICAL_RK4,
-        Method::Euler => &EXPLICIT_EULER,
-    };
-    let mut stepper = ExplicitRk::<N>::new(tab);
-    Integration::new(sys, t0, y0, t_end, opts).run(&mut stepper)
+    let integration = Integration::new(sys, t0, y0, t_end, opts);
+    match opts.method {
+        // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
+        Method::Dp5 => integration.run(&mut Dopri5::<N>::new()),
+        Method::Rk4 => integration.run(&mut ExplicitRk::<N>::new(&CLASSICAL_RK4)),
+        Method::Euler => integration.run(&mut ExplicitRk::<N>::new(&EXPLICIT_EULER)),
+    }
 }
 
 /// Check the settings; `Err` holds the message of an `InvalidInput` status.
