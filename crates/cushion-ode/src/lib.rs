@@ -8,7 +8,8 @@
 //! the recorded trajectory, the event log and the statistics. Stepping ([`stepper`]), dense
 //! output ([`dense`]), step-size control ([`controller`]), events ([`events`]) and the stiffness
 //! test ([`stiffness`]) each live in their own file; the Butcher tableaus are data
-//! ([`tableau`]).
+//! ([`tableau`]). DOPRI5, the method that runs, has its own stepper with the coefficients as
+//! constants ([`dopri5`]); it gives the same numbers as the generic one reading its tableau.
 //!
 //! The state is a fixed-size, stack-allocated `nalgebra::SVector<f64, N>`; nothing is allocated
 //! on the heap inside the step loop (the event log and the recorded output grow only when an
@@ -16,6 +17,7 @@
 
 pub mod controller;
 pub mod dense;
+pub mod dopri5;
 pub mod events;
 mod norm;
 pub mod options;

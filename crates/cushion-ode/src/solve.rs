@@ -3,14 +3,15 @@
 
 use crate::controller::{initial_step, PiController};
 use crate::dense::DenseOutput;
+use crate::dopri5::Dopri5;
 use crate::events::locate;
 use crate::norm::Weights;
 use crate::options::{Method, Output, SolverOptions, StiffnessAction, Tolerance};
 use crate::solution::{EventRecord, Solution, Stats, Status};
 use crate::stepper::{ExplicitRk, Stepper};
 use crate::stiffness::StiffnessDetector;
-use crate::system::{Control, EventAction, OdeSystem, Step, MAX_EVENTS};
-use crate::tableau::{CLASSICAL_RK4, DORMAND_PRINCE_54, EXPLICIT_EULER};
+use crate::system::{Control, Direction, EventAction, OdeSystem, Step, MAX_EVENTS};
+use crate::tableau::{CLASSICAL_RK4, EXPLICIT_EULER};
 use crate::State;
 
 /// Integrate `sys` from `(t0, y0)` to `t_end` with the settings `opts`. Never panics on bad
@@ -22,13 +23,13 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     t_end: f64,
     opts: &SolverOptions,
 ) -> Solution<N> {
-    let tab = match opts.method {
-        Method::Dp5 => &DORMAND_PRINCE_54,
-        Method::Rk4 => &CLASSICAL_RK4,
-        Method::Euler => &EXPLICIT_EULER,
-    };
-    let mut stepper = ExplicitRk::<N>::new(tab);
-    Integration::new(sys, t0, y0, t_end, opts).run(&mut stepper)
+    let integration = Integration::new(sys, t0, y0, t_end, opts);
+    match opts.method {
+        // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
+        Method::Dp5 => integration.run(&mut Dopri5::<N>::new()),
+        Method::Rk4 => integration.run(&mut ExplicitRk::<N>::new(&CLASSICAL_RK4)),
+        Method::Euler => integration.run(&mut ExplicitRk::<N>::new(&EXPLICIT_EULER)),
+    }
 }
 
 /// Check the settings; `Err` holds the message of an `InvalidInput` status.
@@ -79,6 +80,10 @@ fn check_options<const N: usize>(t0: f64, y0: &State<N>, t_end: f64, opts: &Solv
     Ok(())
 }
 
+/// Interior event-scan fractions computed in advance; more subdivisions than this (unusual) are
+/// divided on the fly.
+const MAX_PRECOMPUTED_FRACTIONS: usize = 64;
+
 struct Integration<'a, S, const N: usize> {
     sys: &'a mut S,
     opts: &'a SolverOptions,
@@ -92,6 +97,9 @@ struct Integration<'a, S, const N: usize> {
     stops: Vec<f64>,
     n_events: usize,
     g: [f64; MAX_EVENTS],
+    /// `k / segments` for the first interior event-scan points `k = 1, 2, ...`, divided once
+    /// here rather than every step (the same numbers).
+    scan_fractions: Vec<f64>,
     events: Vec<EventRecord<N>>,
     ts: Vec<f64>,
     ys: Vec<State<N>>,
@@ -111,6 +119,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         stops.sort_by(|a, b| a.total_cmp(b));
         stops.dedup();
         stops.reserve(16);
+        let segments = opts.event_subdivisions.saturating_add(1);
+        let scan_fractions = if n_events == 0 {
+            Vec::new()
+        } else {
+            (1..segments.min(MAX_PRECOMPUTED_FRACTIONS + 1)).map(|k| k as f64 / segments as f64).collect()
+        };
         Integration {
             sys,
             opts,
@@ -123,6 +137,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             stops,
             n_events,
             g: [0.0; MAX_EVENTS],
+            scan_fractions,
             events: Vec::with_capacity(64),
             ts: Vec::new(),
             ys: Vec::new(),
@@ -401,11 +416,21 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             return (t1, *y1, EventAction::Continue);
         }
         let segments = self.opts.event_subdivisions + 1;
+        let fraction = |k: usize| match self.scan_fractions.get(k - 1) {
+            Some(&q) => q,
+            None => k as f64 / segments as f64,
+        };
+        // The directions, asked once per step: they change only when a handler runs, and the
+        // scan asks again after every handler (below).
+        let mut dirs = [Direction::Both; MAX_EVENTS];
+        for (i, d) in dirs[..n].iter_mut().enumerate() {
+            *d = self.sys.event_direction(i);
+        }
         let mut lo_t = t0;
         let mut g_lo = self.g;
         let mut k = 1;
         while k <= segments {
-            let hi_t = if k == segments { t1 } else { t0 + (t1 - t0) * (k as f64 / segments as f64) };
+            let hi_t = if k == segments { t1 } else { t0 + (t1 - t0) * fraction(k) };
             if hi_t <= lo_t {
                 k += 1;
                 continue;
@@ -418,7 +443,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             let mut t_first = f64::INFINITY;
             let mut times = [f64::INFINITY; MAX_EVENTS];
             for i in 0..n {
-                if self.sys.event_direction(i).crosses(g_lo[i], g_hi[i]) {
+                if dirs[i].crosses(g_lo[i], g_hi[i]) {
                     let sys = &*self.sys;
                     let mut buf = [0.0; MAX_EVENTS];
                     let te = locate(
@@ -460,6 +485,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             if strongest != EventAction::Continue {
                 return (t_first, y_after, strongest);
+            }
+            for (i, d) in dirs[..n].iter_mut().enumerate() {
+                *d = self.sys.event_direction(i);
             }
             // Record-only: go on scanning from the far side of the crossing.
             lo_t = t_first;
