@@ -245,8 +245,10 @@ pub struct Model {
     pub(crate) ringing_tail_enabled: bool,
     /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
     pub(crate) ringing_max_amplitude: f64,
-    /// No ringing-tail check before this time (they cost a few dozen evaluations).
+    /// No ringing-tail check before this time.
     pub(crate) next_ringing_check: f64,
+    /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
+    pub(crate) ringing_cache: Vec<(f64, bool, Option<crate::ringing_tail::Linearisation>)>,
     fr_peak_step: Option<PeakStep>,
     fc_peak_step: Option<PeakStep>,
     s_peak_step: Option<PeakStep>,
@@ -409,6 +411,7 @@ impl Model {
             ringing_tail_enabled: scene.solver.early_end && scene.solver.ringing_tail,
             ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
             next_ringing_check: 0.0,
+            ringing_cache: Vec::new(),
             fr_peak_step: None,
             fc_peak_step: None,
             s_peak_step: None,

@@ -32,6 +32,14 @@ pub(crate) fn max_amplitude(rtol: f64) -> f64 {
     (0.3 * (rtol / 1e-6).sqrt()).clamp(0.003, 0.3)
 }
 
+/// Equilibrium stroke (m), the holding stop's depth there (m), and the oscillator about it.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Linearisation {
+    pub s_eq: f64,
+    pub depth: f64,
+    pub coef: Coefficients,
+}
+
 /// The ringing about one robot segment's equilibrium.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Piece {
@@ -91,22 +99,50 @@ impl Model {
         }
     }
 
-    /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
-    /// acceleration `a_r`; `None` if the tool has no such equilibrium on its stop or rings too
-    /// strongly for the closed form.
-    fn ringing_piece(
+    /// The equilibrium on the holding stop and the oscillator's coefficients there, for a robot
+    /// segment of acceleration `a_r`. They depend on `a_r` and on which stop holds the tool only
+    /// (the force law does not depend on time), so they are computed once and kept; `s` is
+    /// where Newton starts.
+    fn linearisation(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        seg: &Segment,
+        a_r: f64,
+        s: f64,
+    ) -> Option<Linearisation> {
+        let fwd = self.regime.fwd;
+        if let Some((_, _, l)) = self
+            .ringing_cache
+            .iter()
+            .find(|(a, f, _)| *a == a_r && *f == fwd)
+        {
+            return *l;
+        }
+        // a failure is not kept: Newton may succeed from a later stroke
+        let l = self.linearise(t, y, seg, a_r, s);
+        if l.is_some() {
+            self.ringing_cache.push((a_r, fwd, l));
+        }
+        l
+    }
+
+    fn linearise(
         &self,
         t: f64,
         y: &[f64],
         seg: &Segment,
         a_r: f64,
         s: f64,
-        sd: f64,
-    ) -> Option<Piece> {
+    ) -> Option<Linearisation> {
         let m = self.p.m_t;
         let h = |s: f64| self.tool_force(t, y, seg, s, 0.0) - m * a_r;
         // equilibrium: Newton from the current stroke, kept on the stop
-        let mut s_eq = s;
+        let mut s_eq = if self.holding_depth(s) > 0.0 {
+            s
+        } else {
+            s - self.holding_depth(s) * 1.01 - 1e-9
+        };
         let mut converged = false;
         for _ in 0..40 {
             let depth = self.holding_depth(s_eq);
@@ -159,13 +195,37 @@ impl Model {
             k2,
             k3,
         };
-        let ring = Ringing::through(&coef, t, s - s_eq, sd)?;
-        if !(ring.reach() <= self.ringing_max_amplitude * depth) {
+        Some(Linearisation { s_eq, depth, coef })
+    }
+
+    /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
+    /// acceleration `a_r`; `None` if the tool has no such equilibrium on its stop or rings too
+    /// strongly for the closed form.
+    fn ringing_piece(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        seg: &Segment,
+        a_r: f64,
+        s: f64,
+        sd: f64,
+    ) -> Option<Piece> {
+        let lin = self.linearisation(t, y, seg, a_r, s)?;
+        let c = &lin.coef;
+        let (u0, max) = (s - lin.s_eq, self.ringing_max_amplitude * lin.depth);
+        // the linear amplitude first: most checks end here, cheaply
+        if !(c.k1 > 0.0)
+            || u0.hypot((sd + c.c / (2.0 * c.m) * u0) / (c.k1 / c.m).sqrt()) > 1.3 * max
+        {
+            return None;
+        }
+        let ring = Ringing::through(c, t, u0, sd)?;
+        if !(ring.reach() <= max) {
             return None;
         }
         Some(Piece {
             t0: t,
-            s_eq,
+            s_eq: lin.s_eq,
             a_r,
             ring,
         })
