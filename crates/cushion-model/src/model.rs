@@ -469,6 +469,15 @@ impl Model {
 
     /// Everything at `(t, y)` with robot segment `seg` and regime `r`.
     pub(crate) fn eval(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
+        self.eval_inline(t, y, seg, r)
+    }
+
+    /// [`Model::eval`], inlined into the hot callers (the right-hand side and the per-step
+    /// samples): there the compiler keeps the fields in registers and drops the ones the
+    /// caller never reads (the ledger's power terms when the ledger is off, the forces the
+    /// right-hand side does not need), instead of filling and copying the whole struct.
+    #[inline(always)]
+    fn eval_inline(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
         let p = &self.p;
         let (x_r, v_r, a_r) = seg.at(t);
         let mut e = Eval {
@@ -907,7 +916,7 @@ impl Model {
                 s_best = (k, e.s);
             }
         };
-        let e1 = self.eval(t1, y1, &seg, &r);
+        let e1 = self.eval_inline(t1, y1, &seg, &r);
         consider(K, &e1);
         // The interior is sampled only where a new peak is possible: near or above the peaks so
         // far, where the stroke turns, and around events; elsewhere the step's end suffices.
@@ -924,7 +933,7 @@ impl Model {
         };
         if interior {
             for k in 1..K {
-                let e = self.eval(tk(k), &node(k)[..n], &seg, &r);
+                let e = self.eval_inline(tk(k), &node(k)[..n], &seg, &r);
                 consider(k, &e);
             }
         }
@@ -966,8 +975,8 @@ impl Model {
                     self.next_sample = (self.n_samples + 1) as f64 * dt;
                 }
             }
-            let e = self.eval(t1, y1, &seg, &r);
-            pts.push(to_point(t1, &e));
+            // the step's end: the same (t1, y1, seg, r) as e1
+            pts.push(to_point(t1, &e1));
             if let Some(rec) = self.record.as_mut() {
                 rec.extend(pts);
             }
@@ -1091,7 +1100,7 @@ pub(crate) fn to_point(t: f64, e: &Eval) -> TrajectoryPoint {
 impl<const N: usize> OdeSystem<N> for Model {
     #[inline]
     fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        let e = self.eval(t, y.as_slice(), self.robot.current(), &self.regime);
+        let e = self.eval_inline(t, y.as_slice(), self.robot.current(), &self.regime);
         let l = &self.layout;
         let mut dy = State::<N>::zeros();
         if let Some(i) = l.tool {
