@@ -931,9 +931,13 @@ impl Model {
                     || s0.max(e1.s) >= m.max_stroke
             }
         };
+        // The nodes are computed at most once per step: for the interior samples, or for a new
+        // peak candidate below.
+        let mut nodes: Option<[[f64; MAX_STATES]; K + 1]> = None;
         if interior {
-            for k in 1..K {
-                let e = self.eval_inline(tk(k), &node(k)[..n], &seg, &r);
+            let nd = nodes.get_or_insert_with(|| std::array::from_fn(node));
+            for (k, yk) in nd.iter().enumerate().take(K).skip(1) {
+                let e = self.eval_inline(tk(k), &yk[..n], &seg, &r);
                 consider(k, &e);
             }
         }
@@ -944,9 +948,9 @@ impl Model {
         self.force_sample = self.force_sample.saturating_sub(1);
         // A new largest sample: remember its step; the peak inside it is refined once, at the
         // end of the run (`refine_peaks`).
-        let cand = |k: usize| PeakStep {
+        let mut cand = |k: usize| PeakStep {
             ts: std::array::from_fn(tk),
-            nodes: std::array::from_fn(node),
+            nodes: *nodes.get_or_insert_with(|| std::array::from_fn(node)),
             seg,
             regime: r,
             k,
