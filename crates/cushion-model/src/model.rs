@@ -192,6 +192,36 @@ pub struct Eval {
     pub p_liquid: f64,
 }
 
+/// The flange and tool kinematics every event function starts from, computed once per
+/// `events` call: flange `x_r` (m), `v_r` (m/s) on the current robot segment `seg`, tool `x_t`,
+/// `v_t` (the flange itself for the rigid module).
+struct EventKinematics<'a> {
+    seg: &'a Segment,
+    x_r: f64,
+    v_r: f64,
+    x_t: f64,
+    v_t: f64,
+}
+
+impl<'a> EventKinematics<'a> {
+    #[inline(always)]
+    fn at(m: &'a Model, t: f64, y: &[f64]) -> EventKinematics<'a> {
+        let seg = m.robot.current();
+        let (x_r, v_r, _) = seg.at(t);
+        let (x_t, v_t) = match m.layout.tool {
+            Some(i) => (y[i], y[i + 1]),
+            None => (x_r, v_r),
+        };
+        EventKinematics {
+            seg,
+            x_r,
+            v_r,
+            x_t,
+            v_t,
+        }
+    }
+}
+
 /// Penetration (m) at which a contact begins; it ends at zero (see `event_value`). Its force
 /// there, `k 1e-21`, is below 1e-15 N for the stiffnesses of the paper.
 const CONTACT_HYSTERESIS: f64 = 1e-14;
@@ -453,6 +483,15 @@ impl Model {
 
     /// Everything at `(t, y)` with robot segment `seg` and regime `r`.
     pub(crate) fn eval(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
+        self.eval_inline(t, y, seg, r)
+    }
+
+    /// [`Model::eval`], inlined into the hot callers (the right-hand side and the per-step
+    /// samples): there the compiler keeps the fields in registers and drops the ones the
+    /// caller never reads (the ledger's power terms when the ledger is off, the forces the
+    /// right-hand side does not need), instead of filling and copying the whole struct.
+    #[inline(always)]
+    fn eval_inline(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
         let p = &self.p;
         let (x_r, v_r, a_r) = seg.at(t);
         let mut e = Eval {
@@ -589,20 +628,18 @@ impl Model {
         self.log_event("brake", t, y);
     }
 
-    fn event_value(&self, kind: u8, t: f64, y: &[f64]) -> f64 {
+    /// Event function `kind` at `(t, y)`, from the flange and tool kinematics `k` at that point
+    /// (computed once per `events` call and shared by every event function).
+    #[inline(always)]
+    fn event_value(&self, kind: u8, t: f64, y: &[f64], k: &EventKinematics) -> f64 {
         let r = &self.regime;
-        let seg = self.robot.current();
-        let (x_r, v_r, _) = seg.at(t);
-        let tool = |y: &[f64]| match self.layout.tool {
-            Some(i) => (y[i], y[i + 1]),
-            None => (x_r, v_r),
-        };
+        let (x_r, v_r, x_t, v_t) = (k.x_r, k.v_r, k.x_t, k.v_t);
         match kind {
             EV_SENSOR => {
                 if r.detected {
                     1.0
                 } else {
-                    x_r - tool(y).0 - self.p.s_sensor
+                    x_r - x_t - self.p.s_sensor
                 }
             }
             // Contacts: penetration `d`, with a hysteresis of `CONTACT_HYSTERESIS` while off
@@ -611,53 +648,54 @@ impl Model {
             // found (an event function that starts a step exactly at zero does not fire).
             EV_OBJECT => {
                 let j = self.layout.object.unwrap_or(0);
-                tool(y).0
-                    - y[j]
+                x_t - y[j]
                     - if r.obj_contact {
                         0.0
                     } else {
                         CONTACT_HYSTERESIS
                     }
             }
-            EV_FWD => tool(y).0 - x_r - if r.fwd { 0.0 } else { CONTACT_HYSTERESIS },
-            EV_BACK => {
-                x_r - tool(y).0 - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS }
-            }
+            EV_FWD => x_t - x_r - if r.fwd { 0.0 } else { CONTACT_HYSTERESIS },
+            EV_BACK => x_r - x_t - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS },
             EV_TOOL_STICK => {
                 if r.tool_stuck {
-                    let e = self.eval(t, y, seg, r);
+                    let e = self.eval(t, y, k.seg, r);
                     self.p.d - e.f_f.abs()
                 } else {
-                    v_r - tool(y).1
+                    v_r - v_t
                 }
             }
             EV_OBJ_STICK => {
                 if r.obj_stuck {
-                    let e = self.eval(t, y, seg, r);
+                    let e = self.eval(t, y, k.seg, r);
                     self.p.mu_n - e.f_c
                 } else {
                     let j = self.layout.object.unwrap_or(0);
                     y[j + 1]
                 }
             }
-            EV_CAVITATION => {
-                // p1 + dp - p_cav from the orifice law, whatever the regime
-                let s = x_r - tool(y).0;
-                let sd = v_r - tool(y).1;
-                let p = &self.p;
-                // the same hysteresis idea: begins at 0, ends at +1e-12 (p10 + |p_cav|)
-                let hyst = if r.cavitating {
-                    1e-12 * (p.p10 + p.p_cav.unwrap_or(0.0).abs())
-                } else {
-                    0.0
-                };
-                physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s)
-                    + physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, sd)
-                    - p.p_cav.unwrap_or(0.0)
-                    - hyst
-            }
+            EV_CAVITATION => self.cavitation_margin(x_r - x_t, v_r - v_t),
             _ => 1.0,
         }
+    }
+
+    /// Cavitation event function at stroke `s` (m) and relative speed `sd` (m/s):
+    /// `p1 + dp - p_cav` (Pa) from the orifice law, whatever the regime. Kept out of line:
+    /// inlined into the loop over the event functions, the compiler computes its logarithm
+    /// and exponential for every scene, cavitation or not.
+    #[inline(never)]
+    fn cavitation_margin(&self, s: f64, sd: f64) -> f64 {
+        let p = &self.p;
+        // the same hysteresis idea: begins at 0, ends at +1e-12 (p10 + |p_cav|)
+        let hyst = if self.regime.cavitating {
+            1e-12 * (p.p10 + p.p_cav.unwrap_or(0.0).abs())
+        } else {
+            0.0
+        };
+        physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s)
+            + physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, sd)
+            - p.p_cav.unwrap_or(0.0)
+            - hyst
     }
 
     fn handle_event(&mut self, kind: u8, t: f64, y: &mut [f64], ctl: &mut Control) -> EventAction {
@@ -894,7 +932,7 @@ impl Model {
                 s_best = (k, e.s);
             }
         };
-        let e1 = self.eval(t1, y1, &seg, &r);
+        let e1 = self.eval_inline(t1, y1, &seg, &r);
         consider(K, &e1);
         // The interior is sampled only where a new peak is possible: near or above the peaks so
         // far, where the stroke turns, and around events; elsewhere the step's end suffices.
@@ -909,9 +947,13 @@ impl Model {
                     || s0.max(e1.s) >= m.max_stroke
             }
         };
+        // The nodes are computed at most once per step: for the interior samples, or for a new
+        // peak candidate below.
+        let mut nodes: Option<[[f64; MAX_STATES]; K + 1]> = None;
         if interior {
-            for k in 1..K {
-                let e = self.eval(tk(k), &node(k)[..n], &seg, &r);
+            let nd = nodes.get_or_insert_with(|| std::array::from_fn(node));
+            for (k, yk) in nd.iter().enumerate().take(K).skip(1) {
+                let e = self.eval_inline(tk(k), &yk[..n], &seg, &r);
                 consider(k, &e);
             }
         }
@@ -922,9 +964,9 @@ impl Model {
         self.force_sample = self.force_sample.saturating_sub(1);
         // A new largest sample: remember its step; the peak inside it is refined once, at the
         // end of the run (`refine_peaks`).
-        let cand = |k: usize| PeakStep {
+        let mut cand = |k: usize| PeakStep {
             ts: std::array::from_fn(tk),
-            nodes: std::array::from_fn(node),
+            nodes: *nodes.get_or_insert_with(|| std::array::from_fn(node)),
             seg,
             regime: r,
             k,
@@ -953,8 +995,8 @@ impl Model {
                     self.next_sample = (self.n_samples + 1) as f64 * dt;
                 }
             }
-            let e = self.eval(t1, y1, &seg, &r);
-            pts.push(to_point(t1, &e));
+            // the step's end: the same (t1, y1, seg, r) as e1
+            pts.push(to_point(t1, &e1));
             if let Some(rec) = self.record.as_mut() {
                 rec.extend(pts);
             }
@@ -1078,7 +1120,7 @@ pub(crate) fn to_point(t: f64, e: &Eval) -> TrajectoryPoint {
 impl<const N: usize> OdeSystem<N> for Model {
     #[inline]
     fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        let e = self.eval(t, y.as_slice(), self.robot.current(), &self.regime);
+        let e = self.eval_inline(t, y.as_slice(), self.robot.current(), &self.regime);
         let l = &self.layout;
         let mut dy = State::<N>::zeros();
         if let Some(i) = l.tool {
@@ -1122,8 +1164,10 @@ impl<const N: usize> OdeSystem<N> for Model {
     }
 
     fn events(&self, t: f64, y: &State<N>, g: &mut [f64]) {
-        for (i, gi) in g.iter_mut().enumerate().take(self.n_events) {
-            *gi = self.event_value(self.events[i], t, y.as_slice());
+        let y = y.as_slice();
+        let k = EventKinematics::at(self, t, y);
+        for (gi, &kind) in g.iter_mut().zip(&self.events[..self.n_events]) {
+            *gi = self.event_value(kind, t, y, &k);
         }
     }
 
