@@ -258,7 +258,7 @@ pub struct Model {
     /// The regime in force during the step being reported to `on_step`.
     step_regime: Regime,
     pub(crate) robot: RobotProfile,
-    pending_brake: Option<f64>,
+    pub(crate) pending_brake: Option<f64>,
     events: [u8; 8],
     n_events: usize,
     pub(crate) metrics: Metrics,
@@ -275,6 +275,9 @@ pub struct Model {
     pub(crate) ringing_tail_enabled: bool,
     /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
     pub(crate) ringing_max_amplitude: f64,
+    /// Error the closed form may leave in the robot impulse, N s: rtol times the momentum scale
+    /// `(m_t + m_p) v_max`.
+    pub(crate) ringing_impulse_tolerance: f64,
     /// No ringing-tail check before this time.
     pub(crate) next_ringing_check: f64,
     /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
@@ -440,6 +443,14 @@ impl Model {
             ringing_tail: None,
             ringing_tail_enabled: scene.solver.early_end && scene.solver.ringing_tail,
             ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
+            ringing_impulse_tolerance: scene.solver.rtol
+                * (scene.tool.mass
+                    + if scene.object.enabled {
+                        scene.object.mass
+                    } else {
+                        0.0
+                    })
+                * scene.robot.approach_speed,
             next_ringing_check: 0.0,
             ringing_cache: Vec::new(),
             fr_peak_step: None,

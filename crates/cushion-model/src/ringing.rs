@@ -122,6 +122,16 @@ impl Ringing {
         Some(r)
     }
 
+    /// Linear decay rate of the amplitude, `lambda = C / 2m` (1/s).
+    pub fn decay_rate(&self) -> f64 {
+        self.lambda
+    }
+
+    /// Equivalent damping ratio of the quadratic damping at the initial amplitude, `mu a0 / w0`.
+    pub fn orifice_damping_ratio(&self) -> f64 {
+        self.mu * self.a0 / self.w0
+    }
+
     /// Amplitude at `t` (m).
     pub fn amplitude(&self, t: f64) -> f64 {
         let tau = (t - self.t0).max(0.0);

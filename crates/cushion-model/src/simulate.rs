@@ -252,10 +252,23 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     let mut y = out.y.clone();
     let mut t = out.t;
     if let Some(te) = model.early_end {
-        if let Some(ts) = model.ringing_tail.as_ref().and_then(|r| r.robot_stop()) {
+        // the robot's kinks inside a ringing tail: its profile gets them, the log names them
+        let kinks = model
+            .ringing_tail
+            .as_ref()
+            .map_or((None, None), |r| (r.brake, r.stop));
+        if let Some(tb) = kinks.0 {
+            model.robot.brake(tb);
+            let point = model.point_at(tb, &model.extrapolated(te, &out.y, tb));
+            model.log.push(EventLogEntry {
+                t: tb,
+                name: "brake".into(),
+                point,
+            });
+        }
+        if let Some(ts) = kinks.1 {
             model.robot.on_time(ts);
-            let yk = model.extrapolated(te, &out.y, ts);
-            let point = model.point_at(ts, &yk);
+            let point = model.point_at(ts, &model.extrapolated(te, &out.y, ts));
             model.log.push(EventLogEntry {
                 t: ts,
                 name: "robot_stopped".into(),

@@ -541,6 +541,14 @@ fn ringing_tail_equals_running_to_t_end() {
             paper("paper-hydraulic-dt70"),
             &[("robot.brake_deceleration", "25")],
         ),
+        // the tail begins while the robot still cruises: the brake happens inside it
+        with(
+            paper("paper-hydraulic-dt70"),
+            &[
+                ("robot.dead_time", "0.15"),
+                ("robot.brake_deceleration", "2"),
+            ],
+        ),
     ];
     for s in cases {
         let what = format!(
@@ -563,6 +571,10 @@ fn ringing_tail_equals_running_to_t_end() {
             b.stats.steps
         );
         assert_same(a, b, 1e-6, &what);
+        assert!(
+            close(a.t_brake.unwrap(), b.t_brake.unwrap(), 1e-12, 0.0),
+            "{what}"
+        );
         assert_eq!(
             (
                 a.object_impacts,
@@ -609,17 +621,24 @@ fn ringing_tail_equals_running_to_t_end() {
                 "{what}: {x} {tx} vs {y} {ty}"
             );
         }
-        // the uniform samples after the early end follow the integrated ringing: stroke to
-        // 1 um (the stop's depth is ~160 um), tool speed to 1 mm/s, force on the robot to 20 mN
+        // the uniform samples after the early end follow the integrated ringing to 1 % of the
+        // stop's depth (stroke), of the depth times 1000 /s (tool speed; the ringing is at
+        // ~500 rad/s) and 2 % of the stop's preload force (force on the robot)
         let pa = &tail.trajectory.unwrap().points;
         let pb = &full.trajectory.unwrap().points;
         let mut compared = 0;
         for p in pa.iter().filter(|p| p.t > te.unwrap()) {
             if let Some(q) = pb.iter().find(|q| q.t == p.t) {
+                let depth = if q.s < 0.0 {
+                    -q.s
+                } else {
+                    q.s - s.stops.stroke
+                };
+                let preload = s.stops.stiffness * depth.abs().powf(1.5);
                 assert!(
-                    (p.s - q.s).abs() < 1e-6
-                        && (p.v_t - q.v_t).abs() < 1e-3
-                        && (p.f_r - q.f_r).abs() < 2e-2,
+                    (p.s - q.s).abs() < 0.01 * depth.abs()
+                        && (p.v_t - q.v_t).abs() < 10.0 * depth.abs()
+                        && (p.f_r - q.f_r).abs() < 0.02 * preload,
                     "{what}: t = {}: {p:?} vs {q:?}",
                     p.t
                 );
@@ -646,18 +665,12 @@ fn ringing_tail_is_not_taken_where_it_cannot_hold() {
     }
     let loose = run(&paper("paper-hydraulic-dt70"));
     let tight = run(&tight(paper("paper-hydraulic-dt70")));
-    let te = |r: &RunResult| {
-        r.events
-            .iter()
-            .find(|e| e.name == "early_end")
-            .map(|e| e.t)
-            .unwrap()
-    };
+    let te = |r: &RunResult| r.events.iter().find(|e| e.name == "early_end").map(|e| e.t);
+    // a tighter tolerance takes the tail later, or not at all
+    let (t_loose, t_tight) = (te(&loose).unwrap(), te(&tight));
     assert!(
-        te(&tight) > te(&loose) + 0.02,
-        "{} {}",
-        te(&tight),
-        te(&loose)
+        t_tight.map_or(true, |t| t > t_loose + 0.02),
+        "{t_tight:?} {t_loose}"
     );
 }
 
