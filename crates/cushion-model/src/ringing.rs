@@ -151,25 +151,60 @@ impl Ringing {
         self.wd - self.mu * a * self.lambda / self.wd + self.nu * a * a
     }
 
-    /// Phase at `t` (rad): `psi0 + int_0^tau phase_rate(a)` (Gauss–Legendre on 16 panels: the
-    /// rate is smooth and approaches its limit at least like `exp(-lambda tau)`).
+    /// Phase at `t` (rad): `psi0 + int_0^tau phase_rate(a)`
+    /// `= psi0 + w_d tau - (mu lambda / w_d) int a + nu int a^2`, both integrals of the
+    /// Bernoulli amplitude in closed form.
     fn phase(&self, t: f64) -> f64 {
         let tau = (t - self.t0).max(0.0);
         if self.mu == 0.0 && self.nu == 0.0 {
             return self.psi0 + self.wd * tau;
         }
-        const X: [f64; 3] = [0.0, 0.774_596_669_241_483_4, -0.774_596_669_241_483_4];
-        const W: [f64; 3] = [8.0 / 9.0, 5.0 / 9.0, 5.0 / 9.0];
-        let panels = 16;
-        let w = tau / panels as f64;
-        let mut psi = self.psi0;
-        for p in 0..panels {
-            let mid = self.t0 + (p as f64 + 0.5) * w;
-            for (x, wt) in X.iter().zip(W.iter()) {
-                psi += 0.5 * w * wt * self.phase_rate(self.amplitude(mid + 0.5 * w * x));
-            }
+        let (int_a, int_a2) = self.amplitude_integrals(tau);
+        self.psi0 + self.wd * tau - self.mu * self.lambda / self.wd * int_a + self.nu * int_a2
+    }
+
+    /// `int_0^tau a` and `int_0^tau a^2` for `a' = -lambda a - mu a^2`: with
+    /// `E = exp(-lambda tau)`, `b = mu a0 / lambda`, `x = b (1 - E)`:
+    /// `int a = ln(1 + x) / mu`, `int a^2 = a0^2 / (lambda b^2) ((1 + b) x / (1 + x) - ln(1 + x))`
+    /// (by series for small `x`, where the difference cancels).
+    pub(crate) fn amplitude_integrals(&self, tau: f64) -> (f64, f64) {
+        let (a0, l, m) = (self.a0, self.lambda, self.mu);
+        if l == 0.0 {
+            // a = a0 / (1 + mu a0 tau)
+            let y = m * a0 * tau;
+            return if y == 0.0 {
+                (a0 * tau, a0 * a0 * tau)
+            } else {
+                (y.ln_1p() / m, a0 * a0 * tau / (1.0 + y))
+            };
         }
-        psi
+        let one_minus_e = -(-l * tau).exp_m1();
+        let b = m * a0 / l;
+        let x = b * one_minus_e;
+        if x < 1e-3 {
+            // series in x = b d, d = 1 - E: ln(1+x)/x = sum (-x)^n/(n+1), and
+            // f/b^2 = sum_{n>=1} (-1)^(n+1) (b^(n-1) + ((n-1)/n) b^(n-2)) d^n
+            let d = one_minus_e;
+            let (mut int_a, mut f_over_b2) = (0.0, d);
+            let (mut xn, mut bd) = (1.0, d); // x^n, and b^(n-2) d^n from n = 2
+            for n in 0..10 {
+                let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
+                int_a += sign * xn / (n + 1) as f64;
+                xn *= x;
+            }
+            for n in 2..10 {
+                let nf = n as f64;
+                bd *= if n == 2 { d } else { b * d };
+                let sign = if n % 2 == 1 { 1.0 } else { -1.0 };
+                f_over_b2 += sign * (b * bd + (nf - 1.0) / nf * bd);
+            }
+            return (a0 / l * d * int_a, a0 * a0 / l * f_over_b2);
+        }
+        let ln = x.ln_1p();
+        (
+            (ln / m),
+            a0 * a0 / (l * b * b) * ((1.0 + b) * x / (1.0 + x) - ln),
+        )
     }
 
     /// Displacement `u` (m) and velocity `u'` (m/s) at `t >= t0`.
@@ -332,6 +367,37 @@ mod tests {
                 (da + lambda * a + mu * a * a).abs() < 1e-9 * a * lambda,
                 "t={t}"
             );
+        }
+    }
+
+    #[test]
+    fn amplitude_integrals_match_quadrature() {
+        // closed forms (and their series for small orifice damping) against Simpson's rule
+        let (c, depth) = paper_like();
+        for (q, eps) in [(66.0, 0.1), (66.0, 1e-5), (0.0, 0.1), (3000.0, 0.02)] {
+            let r = Ringing::through(&Coefficients { q, ..c }, 0.0, eps * depth, 0.0).unwrap();
+            for tau in [1e-4, 0.01, 0.2] {
+                let n = 20000;
+                let h = tau / n as f64;
+                let (mut i1, mut i2) = (0.0, 0.0);
+                for k in 0..=n {
+                    let w = if k == 0 || k == n {
+                        1.0
+                    } else if k % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    let a = r.amplitude(k as f64 * h);
+                    i1 += w * a * h / 3.0;
+                    i2 += w * a * a * h / 3.0;
+                }
+                let (c1, c2) = r.amplitude_integrals(tau);
+                assert!(
+                    (c1 - i1).abs() <= 1e-10 * i1 && (c2 - i2).abs() <= 1e-10 * i2,
+                    "q={q} eps={eps} tau={tau}: {c1} {i1} {c2} {i2}"
+                );
+            }
         }
     }
 
