@@ -110,6 +110,14 @@ fn main() {
         &with(h.clone(), &[("object.plane_friction", "0.5")]),
     );
     row(
+        "ringing tail off (integrated to t_end)",
+        &with(h.clone(), &[("solver.ringing_tail", "false")]),
+    );
+    row(
+        "bistable dt70, ringing tail off",
+        &with(scene("paper-bistable-dt70"), &[("solver.ringing_tail", "false")]),
+    );
+    row(
         "early end off, t_end 1.5 s",
         &with(
             h.clone(),

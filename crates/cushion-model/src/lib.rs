@@ -38,6 +38,11 @@
 //!   search on the dense polynomial). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
 //!   the tolerance (tested).
+//! - **Ringing tail** (`solver.ringing_tail`, with early end): once only the tool's small ringing
+//!   on its stop is left, the run ends and that ringing is written in closed form (averaging
+//!   method, `ringing.rs`), where it can change no summary value and its predicted error in the
+//!   robot impulse is below `rtol (m_t + m_p) v_max` (`ringing_tail.rs`; tested against running
+//!   to `t_end`).
 //! - **Cavitation** (extension, off by default): `p_m >= hydraulic.cavitation_pressure`, with
 //!   events at its onset and end; the orifice then carries `p_cav - p1`.
 //! - **Compressible liquid** (SPEC section 6, `hydraulic.bulk_modulus > 0`): the main chamber

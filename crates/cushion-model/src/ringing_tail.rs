@@ -442,6 +442,16 @@ impl Model {
         y
     }
 
+    /// Log the event `name` at `t` after an early end at `(te, y_te)`, with the extrapolated state.
+    pub(crate) fn log_extrapolated(&mut self, name: &str, te: f64, y_te: &[f64], t: f64) {
+        let point = self.point_at(t, &self.extrapolated(te, y_te, t));
+        self.log.push(crate::trajectory::EventLogEntry {
+            t,
+            name: name.into(),
+            point,
+        });
+    }
+
     /// The robot's work on the module during the ringing tail, J: per segment of constant `a_r`,
     /// `int G v_r dt` with `G = m (a_r - s'')` is `m a_r dx_r - m [sd v_r] + m a_r ds`.
     pub(crate) fn ringing_tail_work(&self, t_end: f64) -> f64 {

@@ -12,7 +12,9 @@
 //!   relative speed below `100 atol` m/s and its acceleration below `1000 atol` m/s^2), and the
 //!   object is out of contact and either free and not slower than the tool or stuck on the
 //!   plane, nothing can change any more: the run stops and the final values at `t_end` are
-//!   extrapolated exactly (object at constant speed, everything else at rest).
+//!   extrapolated exactly (object at constant speed, everything else at rest). Failing that, the
+//!   run may end once only the tool's small ringing on its stop is left, written in closed form
+//!   (`ringing_tail.rs`).
 
 use crate::config::{Module, Scene};
 use crate::model::{to_point, Model};
@@ -259,21 +261,11 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             .map_or((None, None), |r| (r.brake, r.stop));
         if let Some(tb) = kinks.0 {
             model.robot.brake(tb);
-            let point = model.point_at(tb, &model.extrapolated(te, &out.y, tb));
-            model.log.push(EventLogEntry {
-                t: tb,
-                name: "brake".into(),
-                point,
-            });
+            model.log_extrapolated("brake", te, &out.y, tb);
         }
         if let Some(ts) = kinks.1 {
             model.robot.on_time(ts);
-            let point = model.point_at(ts, &model.extrapolated(te, &out.y, ts));
-            model.log.push(EventLogEntry {
-                t: ts,
-                name: "robot_stopped".into(),
-                point,
-            });
+            model.log_extrapolated("robot_stopped", te, &out.y, ts);
         }
         y = model.extrapolated(te, &out.y, t_end);
         if model.ringing_tail.is_some() {
