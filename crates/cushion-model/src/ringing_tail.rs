@@ -9,9 +9,11 @@
 //! - the object can never be touched again (absent; or out of contact, free, at least as fast as
 //!   the robot and ahead of anything the tool can reach; or resting on the plane out of reach),
 //! - the tool is held by exactly one stop, without dry friction, and rings about that robot
-//!   segment's equilibrium with an amplitude below [`MAX_AMPLITUDE`] of the stop's depth,
-//!   small enough that no summary value can change (no new peak of `|F_r|` or stroke, the stop
-//!   contact never opens, no cavitation),
+//!   segment's equilibrium with an amplitude below [`max_amplitude`] of the stop's depth and
+//!   weak orifice damping, small enough that no summary value can change (no new peak of
+//!   `|F_r|` or stroke, the stop contact never opens, no cavitation),
+//! - the closed form's predicted error in the robot impulse at `t_end`
+//!   ([`RingingTail::impulse_error`]) is below `rtol (m_t + m_p) v_max`,
 //!
 //! the run ends and the tool's motion is written as a weakly nonlinear oscillator in the robot's
 //! frame (`ringing.rs`) about each remaining robot segment's equilibrium, with the coefficients
@@ -45,15 +47,16 @@ pub(crate) struct Linearisation {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Piece {
     pub t0: f64,
-    /// Equilibrium stroke (m) and robot acceleration (m/s^2) of the segment.
+    /// Equilibrium stroke (m).
     pub s_eq: f64,
     /// Depth of the holding stop at equilibrium (m).
     pub depth: f64,
+    /// Robot acceleration of the segment (m/s^2).
     pub a_r: f64,
     pub ring: Ringing,
 }
 
-/// The tool's motion from `t_start` to the end of the run.
+/// The tool's motion from the early end to the end of the run.
 #[derive(Clone, Debug)]
 pub(crate) struct RingingTail {
     /// One piece per robot segment left (cruising, braking, standing); in time order.
