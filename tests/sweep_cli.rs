@@ -19,7 +19,11 @@ fn cushion(args: &[&str]) -> Output {
 }
 
 fn cushion_env(args: &[&str], env: (&str, &str)) -> Output {
-    Command::new(BIN).args(args).env(env.0, env.1).output().expect("cushion runs")
+    Command::new(BIN)
+        .args(args)
+        .env(env.0, env.1)
+        .output()
+        .expect("cushion runs")
 }
 
 fn ok(o: &Output) {
@@ -35,7 +39,10 @@ fn ok(o: &Output) {
 /// A sweep file in `dir`, with the shipped paper scene as its base.
 fn sweep_file(dir: &Path, name: &str, body: &str) -> PathBuf {
     let scene = root().join("sweeps/scenes/paper-hydraulic-dt70.toml");
-    let text = format!("name = \"{name}\"\nscene = {:?}\n{body}", scene.to_str().unwrap());
+    let text = format!(
+        "name = \"{name}\"\nscene = {:?}\n{body}",
+        scene.to_str().unwrap()
+    );
     let p = dir.join(format!("{name}.toml"));
     fs::write(&p, text).unwrap();
     p
@@ -69,14 +76,24 @@ fn s(p: &Path) -> &str {
 
 fn read_batches(p: &Path) -> Vec<RecordBatch> {
     let f = fs::File::open(p).unwrap();
-    ParquetRecordBatchReaderBuilder::try_new(f).unwrap().build().unwrap().map(|b| b.unwrap()).collect()
+    ParquetRecordBatchReaderBuilder::try_new(f)
+        .unwrap()
+        .build()
+        .unwrap()
+        .map(|b| b.unwrap())
+        .collect()
 }
 
 fn runs_of(p: &Path) -> Vec<i64> {
     read_batches(p)
         .iter()
         .flat_map(|b| {
-            let a = b.column_by_name("run").unwrap().as_any().downcast_ref::<Int64Array>().unwrap();
+            let a = b
+                .column_by_name("run")
+                .unwrap()
+                .as_any()
+                .downcast_ref::<Int64Array>()
+                .unwrap();
             a.values().to_vec()
         })
         .collect()
@@ -87,10 +104,30 @@ fn same_rows_whatever_the_thread_count() {
     let dir = tempfile::tempdir().unwrap();
     let f = sweep_file(dir.path(), "small", SMALL);
     let (a, b) = (dir.path().join("a"), dir.path().join("b"));
-    ok(&cushion(&["sweep", s(&f), "--out", s(&a), "--threads", "1", "--quiet"]));
-    ok(&cushion(&["sweep", s(&f), "--out", s(&b), "--threads", "2", "--quiet"]));
+    ok(&cushion(&[
+        "sweep",
+        s(&f),
+        "--out",
+        s(&a),
+        "--threads",
+        "1",
+        "--quiet",
+    ]));
+    ok(&cushion(&[
+        "sweep",
+        s(&f),
+        "--out",
+        s(&b),
+        "--threads",
+        "2",
+        "--quiet",
+    ]));
     let csv = fs::read(a.join("summary.csv")).unwrap();
-    assert_eq!(csv, fs::read(b.join("summary.csv")).unwrap(), "CSV differs between 1 and 2 threads");
+    assert_eq!(
+        csv,
+        fs::read(b.join("summary.csv")).unwrap(),
+        "CSV differs between 1 and 2 threads"
+    );
     assert_eq!(
         fs::read(a.join("summary.parquet")).unwrap(),
         fs::read(b.join("summary.parquet")).unwrap()
@@ -98,10 +135,18 @@ fn same_rows_whatever_the_thread_count() {
     let text = String::from_utf8(csv).unwrap();
     let mut lines = text.lines();
     let header = lines.next().unwrap();
-    assert!(header.starts_with("run,robot.dead_time,object.mass,module,status,message,t_detect,"), "{header}");
-    assert!(header.ends_with(",stats_steps,stats_rejected,stats_rhs_evals,stats_events,stats_stiff"));
+    assert!(
+        header.starts_with("run,robot.dead_time,object.mass,module,status,message,t_detect,"),
+        "{header}"
+    );
+    assert!(
+        header.ends_with(",stats_steps,stats_rejected,stats_rhs_evals,stats_events,stats_stiff")
+    );
     assert_eq!(lines.count(), 30);
-    assert_eq!(runs_of(&a.join("summary.parquet")), (0..30).collect::<Vec<_>>());
+    assert_eq!(
+        runs_of(&a.join("summary.parquet")),
+        (0..30).collect::<Vec<_>>()
+    );
     // Provenance and the sweep file copy; no working folder left.
     let prov: serde_json::Value =
         serde_json::from_slice(&fs::read(a.join("provenance.json")).unwrap()).unwrap();
@@ -109,7 +154,10 @@ fn same_rows_whatever_the_thread_count() {
     assert_eq!(prov["n_runs_total"], 30);
     assert_eq!(prov["solver"]["solver.rtol"], 1e-6);
     assert!(prov["wall_seconds"].as_f64().unwrap() > 0.0);
-    assert_eq!(fs::read(a.join("sweep.toml")).unwrap(), fs::read(&f).unwrap());
+    assert_eq!(
+        fs::read(a.join("sweep.toml")).unwrap(),
+        fs::read(&f).unwrap()
+    );
     assert!(!a.join(".sweep").exists());
     assert!(a.join("report-speed-force.svg").exists());
 }
@@ -124,14 +172,33 @@ fn killed_and_resumed_equals_uninterrupted() {
     let part = dir.path().join("part");
     // Stops abruptly (no cleanup) after 3 of 8 chunks.
     let o = cushion_env(
-        &["sweep", s(&f), "--out", s(&part), "--threads", "2", "--quiet"],
+        &[
+            "sweep",
+            s(&f),
+            "--out",
+            s(&part),
+            "--threads",
+            "2",
+            "--quiet",
+        ],
         ("CUSHION_SWEEP_ABORT_AFTER_CHUNKS", "3"),
     );
-    assert_eq!(o.status.code(), Some(99), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        o.status.code(),
+        Some(99),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     assert!(!part.join("summary.csv").exists());
     let chunks = fs::read_dir(part.join(".sweep"))
         .unwrap()
-        .filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".parquet"))
+        .filter(|e| {
+            e.as_ref()
+                .unwrap()
+                .file_name()
+                .to_string_lossy()
+                .ends_with(".parquet")
+        })
         .count();
     assert_eq!(chunks, 3);
 
@@ -146,7 +213,15 @@ fn killed_and_resumed_equals_uninterrupted() {
         ("CUSHION_SWEEP_ABORT_AFTER_CHUNKS", "2"),
     );
     assert_eq!(o.status.code(), Some(99));
-    let o = cushion(&["sweep", s(&f), "--out", s(&part), "--resume", "--threads", "1"]);
+    let o = cushion(&[
+        "sweep",
+        s(&f),
+        "--out",
+        s(&part),
+        "--resume",
+        "--threads",
+        "1",
+    ]);
     ok(&o);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(stdout.contains("30 runs (10 computed now"), "{stdout}");
@@ -154,7 +229,10 @@ fn killed_and_resumed_equals_uninterrupted() {
         fs::read(whole.join("summary.csv")).unwrap(),
         fs::read(part.join("summary.csv")).unwrap()
     );
-    assert_eq!(runs_of(&part.join("summary.parquet")), (0..30).collect::<Vec<_>>());
+    assert_eq!(
+        runs_of(&part.join("summary.parquet")),
+        (0..30).collect::<Vec<_>>()
+    );
     assert_eq!(
         fs::read(whole.join("summary.parquet")).unwrap(),
         fs::read(part.join("summary.parquet")).unwrap()
@@ -175,7 +253,13 @@ fn killed_and_resumed_equals_uninterrupted() {
         ("CUSHION_SWEEP_ABORT_AFTER_CHUNKS", "1"),
     );
     assert_eq!(o.status.code(), Some(99));
-    fs::write(&f, fs::read_to_string(&f).unwrap().replace("seed = 11", "seed = 12")).unwrap();
+    fs::write(
+        &f,
+        fs::read_to_string(&f)
+            .unwrap()
+            .replace("seed = 11", "seed = 12"),
+    )
+    .unwrap();
     let o = cushion(&["sweep", s(&f), "--out", s(&part), "--resume", "--quiet"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("different sweep"));
@@ -185,20 +269,39 @@ fn killed_and_resumed_equals_uninterrupted() {
 fn really_killed_and_resumed() {
     let dir = tempfile::tempdir().unwrap();
     // One run per chunk, enough runs that the kill lands mid-sweep.
-    let body = SMALL.replace("samples = 30", "samples = 120").replace("chunk_size = 4", "chunk_size = 1");
+    let body = SMALL
+        .replace("samples = 30", "samples = 120")
+        .replace("chunk_size = 4", "chunk_size = 1");
     let f = sweep_file(dir.path(), "kill", &body);
     let whole = dir.path().join("whole");
     ok(&cushion(&["sweep", s(&f), "--out", s(&whole), "--quiet"]));
     let part = dir.path().join("part");
     let mut child = Command::new(BIN)
-        .args(["sweep", s(&f), "--out", s(&part), "--threads", "2", "--quiet"])
+        .args([
+            "sweep",
+            s(&f),
+            "--out",
+            s(&part),
+            "--threads",
+            "2",
+            "--quiet",
+        ])
         .spawn()
         .unwrap();
     let state = part.join(".sweep");
     let t0 = std::time::Instant::now();
     loop {
         let n = fs::read_dir(&state)
-            .map(|d| d.filter(|e| e.as_ref().unwrap().file_name().to_string_lossy().ends_with(".parquet")).count())
+            .map(|d| {
+                d.filter(|e| {
+                    e.as_ref()
+                        .unwrap()
+                        .file_name()
+                        .to_string_lossy()
+                        .ends_with(".parquet")
+                })
+                .count()
+            })
             .unwrap_or(0);
         if n >= 5 || t0.elapsed().as_secs() > 60 {
             break;
@@ -214,7 +317,10 @@ fn really_killed_and_resumed() {
         fs::read(whole.join("summary.csv")).unwrap(),
         fs::read(part.join("summary.csv")).unwrap()
     );
-    assert_eq!(runs_of(&part.join("summary.parquet")), (0..120).collect::<Vec<_>>());
+    assert_eq!(
+        runs_of(&part.join("summary.parquet")),
+        (0..120).collect::<Vec<_>>()
+    );
     assert!(interrupted, "the sweep finished before it could be killed");
 }
 
@@ -228,9 +334,20 @@ fn union_of_shards_equals_the_whole() {
     let shards: Vec<PathBuf> = (1..=3).map(|k| dir.path().join(format!("s{k}"))).collect();
     for (k, d) in shards.iter().enumerate() {
         let spec = format!("{}/3", k + 1);
-        ok(&cushion(&["sweep", s(&f), "--out", s(d), "--shard", &spec, "--quiet"]));
+        ok(&cushion(&[
+            "sweep",
+            s(&f),
+            "--out",
+            s(d),
+            "--shard",
+            &spec,
+            "--quiet",
+        ]));
         let runs = runs_of(&d.join("summary.parquet"));
-        assert_eq!(runs, (0..30).filter(|r| r % 3 == k as i64).collect::<Vec<_>>());
+        assert_eq!(
+            runs,
+            (0..30).filter(|r| r % 3 == k as i64).collect::<Vec<_>>()
+        );
     }
     // Merging two of three is refused, naming the missing shard.
     let merged = dir.path().join("merged");
@@ -240,7 +357,15 @@ fn union_of_shards_equals_the_whole() {
     assert!(!merged.join("summary.csv").exists());
 
     // Any order.
-    ok(&cushion(&["merge", s(&shards[2]), s(&shards[0]), s(&shards[1]), "--out", s(&merged), "--quiet"]));
+    ok(&cushion(&[
+        "merge",
+        s(&shards[2]),
+        s(&shards[0]),
+        s(&shards[1]),
+        "--out",
+        s(&merged),
+        "--quiet",
+    ]));
     assert_eq!(
         fs::read(whole.join("summary.csv")).unwrap(),
         fs::read(merged.join("summary.csv")).unwrap()
@@ -261,13 +386,26 @@ fn union_of_shards_equals_the_whole() {
             .collect()
     };
     let whole_msgs = messages(&whole.join("trajectories.mcap"));
-    let mut runs: Vec<&str> = whole_msgs.iter().map(|m| m.0.split('/').nth(2).unwrap()).collect();
+    let mut runs: Vec<&str> = whole_msgs
+        .iter()
+        .map(|m| m.0.split('/').nth(2).unwrap())
+        .collect();
     runs.dedup();
     assert_eq!(runs, ["0", "4", "6", "28"]);
     assert_eq!(whole_msgs, messages(&merged.join("trajectories.mcap")));
-    assert!(!shards[2].join("trajectories.mcap").exists(), "shard 3 records no run");
+    assert!(
+        !shards[2].join("trajectories.mcap").exists(),
+        "shard 3 records no run"
+    );
     // A shard given twice is refused.
-    let o = cushion(&["merge", s(&shards[0]), s(&shards[0]), s(&shards[1]), "--out", s(&merged)]);
+    let o = cushion(&[
+        "merge",
+        s(&shards[0]),
+        s(&shards[0]),
+        s(&shards[1]),
+        "--out",
+        s(&merged),
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("given twice"));
 }
@@ -292,10 +430,20 @@ values = [0.01, 0.07]
     ok(&o);
     assert!(String::from_utf8_lossy(&o.stdout).contains("4 runs (4 computed now, 2 not ok)"));
     let csv = fs::read_to_string(out.join("summary.csv")).unwrap();
-    let status: Vec<&str> = csv.lines().skip(1).map(|l| l.split(',').nth(3).unwrap()).collect();
+    let status: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(3).unwrap())
+        .collect();
     assert_eq!(status, ["max_steps", "max_steps", "ok", "ok"], "{csv}");
     let batches = read_batches(&out.join("summary.parquet"));
-    let msg = batches[0].column_by_name("message").unwrap().as_any().downcast_ref::<StringArray>().unwrap().clone();
+    let msg = batches[0]
+        .column_by_name("message")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<StringArray>()
+        .unwrap()
+        .clone();
     assert!(msg.value(0).contains("20"), "{}", msg.value(0));
     assert_eq!(msg.value(2), "");
 }
@@ -325,7 +473,10 @@ fn invalid_sweep_files_fail_before_any_run() {
         let o = cushion(&["sweep", s(&f), "--out", s(&out)]);
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{body:?}: {err}");
-        assert!(err.contains(want), "{body:?}: stderr {err:?} lacks {want:?}");
+        assert!(
+            err.contains(want),
+            "{body:?}: stderr {err:?} lacks {want:?}"
+        );
         assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
         assert!(!out.exists(), "{body:?}: wrote {out:?}");
         assert!(o.stdout.is_empty());
@@ -334,7 +485,14 @@ fn invalid_sweep_files_fail_before_any_run() {
     let dir = tempfile::tempdir().unwrap();
     let f = sweep_file(dir.path(), "ok", "");
     for args in [["--shard", "4/3"], ["--shard", "0/2"], ["--threads", "0"]] {
-        let o = cushion(&["sweep", s(&f), args[0], args[1], "--out", s(&dir.path().join("o"))]);
+        let o = cushion(&[
+            "sweep",
+            s(&f),
+            args[0],
+            args[1],
+            "--out",
+            s(&dir.path().join("o")),
+        ]);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
         assert!(!dir.path().join("o").exists());
     }
@@ -398,7 +556,10 @@ record = [1]
                     let v = json.as_f64().unwrap_or(f64::NAN);
                     let x = a.value(row);
                     // serde_json's default float parser may be off by an ulp.
-                    assert!((v - x).abs() <= 2.0 * f64::EPSILON * x.abs(), "{name}: {v} vs {x}");
+                    assert!(
+                        (v - x).abs() <= 2.0 * f64::EPSILON * x.abs(),
+                        "{name}: {v} vs {x}"
+                    );
                 }
             } else if let Some(a) = col.as_any().downcast_ref::<Int64Array>() {
                 assert_eq!(json.as_i64(), Some(a.value(row)), "{name}");
@@ -417,22 +578,55 @@ record = [1]
     for m in mcap::MessageStream::new(&bytes).unwrap() {
         topics.insert(m.unwrap().channel.topic.clone());
     }
-    assert_eq!(topics.into_iter().collect::<Vec<_>>(), ["/run/1/events", "/run/1/state"]);
+    assert_eq!(
+        topics.into_iter().collect::<Vec<_>>(),
+        ["/run/1/events", "/run/1/state"]
+    );
 }
 
 #[test]
 fn shipped_paper_sweep_reproduces_the_papers_claims() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("paper");
-    ok(&cushion(&["sweep", s(&root().join("sweeps/paper.toml")), "--out", s(&out), "--quiet"]));
+    ok(&cushion(&[
+        "sweep",
+        s(&root().join("sweeps/paper.toml")),
+        "--out",
+        s(&out),
+        "--quiet",
+    ]));
     let b = &read_batches(&out.join("summary.parquet"))[0];
-    let col = |n: &str| b.column_by_name(n).unwrap().as_any().downcast_ref::<Float64Array>().unwrap().clone();
-    let module = b.column_by_name("module").unwrap().as_any().downcast_ref::<StringArray>().unwrap().clone();
-    let (dt, v, f) = (col("robot.dead_time"), col("object_final_velocity"), col("peak_robot_force"));
-    let find = |m: &str, d: f64| (0..b.num_rows()).find(|i| module.value(*i) == m && dt.value(*i) == d).unwrap();
+    let col = |n: &str| {
+        b.column_by_name(n)
+            .unwrap()
+            .as_any()
+            .downcast_ref::<Float64Array>()
+            .unwrap()
+            .clone()
+    };
+    let module = b
+        .column_by_name("module")
+        .unwrap()
+        .as_any()
+        .downcast_ref::<StringArray>()
+        .unwrap()
+        .clone();
+    let (dt, v, f) = (
+        col("robot.dead_time"),
+        col("object_final_velocity"),
+        col("peak_robot_force"),
+    );
+    let find = |m: &str, d: f64| {
+        (0..b.num_rows())
+            .find(|i| module.value(*i) == m && dt.value(*i) == d)
+            .unwrap()
+    };
     for d in [0.01, 0.07] {
         let (h, bi) = (find("hydraulic", d), find("bistable", d));
-        assert!(f.value(h).abs() < f.value(bi).abs(), "robot force lower with hydraulic at {d}");
+        assert!(
+            f.value(h).abs() < f.value(bi).abs(),
+            "robot force lower with hydraulic at {d}"
+        );
     }
     assert!(v.value(find("hydraulic", 0.07)).abs() < v.value(find("bistable", 0.07)).abs());
     assert!(v.value(find("bistable", 0.01)).abs() < v.value(find("hydraulic", 0.01)).abs());
@@ -454,8 +648,19 @@ fn shipped_design_space_sweep_parses() {
     let f = root().join("sweeps/design-space.toml");
     let text = fs::read_to_string(&f).unwrap();
     assert!(text.contains("samples = 16384"));
-    ok(&cushion(&["sweep", s(&f), "--out", s(&out), "--shard", "1/512", "--quiet"]));
-    assert_eq!(runs_of(&out.join("summary.parquet")), (0..32).map(|i| i * 512).collect::<Vec<_>>());
+    ok(&cushion(&[
+        "sweep",
+        s(&f),
+        "--out",
+        s(&out),
+        "--shard",
+        "1/512",
+        "--quiet",
+    ]));
+    assert_eq!(
+        runs_of(&out.join("summary.parquet")),
+        (0..32).map(|i| i * 512).collect::<Vec<_>>()
+    );
     assert!(out.join("report-heatmap.svg").exists());
     assert!(out.join("report-speed-force.svg").exists());
 }
@@ -464,14 +669,32 @@ fn shipped_design_space_sweep_parses() {
 fn shipped_reference_sweep_runs() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("ref");
-    ok(&cushion(&["sweep", s(&root().join("sweeps/reference.toml")), "--out", s(&out), "--quiet"]));
+    ok(&cushion(&[
+        "sweep",
+        s(&root().join("sweeps/reference.toml")),
+        "--out",
+        s(&out),
+        "--quiet",
+    ]));
     let csv = fs::read_to_string(out.join("summary.csv")).unwrap();
     assert_eq!(csv.lines().count(), 5);
-    assert!(csv.lines().nth(4).unwrap().starts_with("3,0.07,100000.0,bistable,ok,"));
+    assert!(csv
+        .lines()
+        .nth(4)
+        .unwrap()
+        .starts_with("3,0.07,100000.0,bistable,ok,"));
     let bytes = fs::read(out.join("trajectories.mcap")).unwrap();
     let mut topics = std::collections::BTreeSet::new();
     for m in mcap::MessageStream::new(&bytes).unwrap() {
         topics.insert(m.unwrap().channel.topic.clone());
     }
-    assert_eq!(topics.into_iter().collect::<Vec<_>>(), ["/run/0/events", "/run/0/state", "/run/3/events", "/run/3/state"]);
+    assert_eq!(
+        topics.into_iter().collect::<Vec<_>>(),
+        [
+            "/run/0/events",
+            "/run/0/state",
+            "/run/3/events",
+            "/run/3/state"
+        ]
+    );
 }

@@ -19,10 +19,18 @@ pub struct MergeArgs {
 }
 
 pub fn run(args: MergeArgs) -> i32 {
-    match merge(&MergeOptions { dirs: args.dirs, out: args.out }) {
+    match merge(&MergeOptions {
+        dirs: args.dirs,
+        out: args.out,
+    }) {
         Ok(o) => {
             if !args.quiet {
-                println!("{}: {} runs merged ({} not ok)", o.out_dir.display(), o.runs, o.runs_failed);
+                println!(
+                    "{}: {} runs merged ({} not ok)",
+                    o.out_dir.display(),
+                    o.runs,
+                    o.runs_failed
+                );
             }
             0
         }

@@ -7,7 +7,11 @@ mod sweep;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser, Debug)]
-#[command(name = "cushion", version, about = "Robot end-effector collisions with small objects, and the modules that soften them")]
+#[command(
+    name = "cushion",
+    version,
+    about = "Robot end-effector collisions with small objects, and the modules that soften them"
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Command,

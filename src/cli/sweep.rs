@@ -29,7 +29,10 @@ pub struct SweepArgs {
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
     let err = || format!("`{s}`: expected K/N with 1 <= K <= N, e.g. 2/4");
     let (k, n) = s.split_once('/').ok_or_else(err)?;
-    let (k, n): (usize, usize) = (k.trim().parse().map_err(|_| err())?, n.trim().parse().map_err(|_| err())?);
+    let (k, n): (usize, usize) = (
+        k.trim().parse().map_err(|_| err())?,
+        n.trim().parse().map_err(|_| err())?,
+    );
     if k == 0 || n == 0 || k > n {
         return Err(err());
     }

@@ -115,7 +115,10 @@ fn main() {
     );
     row(
         "bistable dt70, ringing tail off",
-        &with(scene("paper-bistable-dt70"), &[("solver.ringing_tail", "false")]),
+        &with(
+            scene("paper-bistable-dt70"),
+            &[("solver.ringing_tail", "false")],
+        ),
     );
     row(
         "early end off, t_end 1.5 s",

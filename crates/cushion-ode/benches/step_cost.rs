@@ -46,7 +46,13 @@ fn rhs_cost<S: OdeSystem<N>, const N: usize>(sys: &S, y: State<N>) -> f64 {
     }) / n as f64
 }
 
-fn overhead<S: OdeSystem<N>, const N: usize>(name: &str, sys: &mut S, y0: State<N>, t_end: f64, tol: f64) {
+fn overhead<S: OdeSystem<N>, const N: usize>(
+    name: &str,
+    sys: &mut S,
+    y0: State<N>,
+    t_end: f64,
+    tol: f64,
+) {
     let o = opts(tol);
     let sol = solve(sys, 0.0, y0, t_end, &o);
     let per_solve = time_per_call(21, 20, || {
@@ -68,22 +74,42 @@ fn overhead<S: OdeSystem<N>, const N: usize>(name: &str, sys: &mut S, y0: State<
 
 fn main() {
     println!("# Arenstorf orbit, one period, rtol = atol = tol");
-    println!("{:>8} {:>8} {:>9} {:>10} {:>12} {:>10}", "tol", "steps", "rejected", "rhs_evals", "end_error", "us/solve");
+    println!(
+        "{:>8} {:>8} {:>9} {:>10} {:>12} {:>10}",
+        "tol", "steps", "rejected", "rhs_evals", "end_error", "us/solve"
+    );
     for k in 4..=10 {
         let tol = 10f64.powi(-k);
         let o = opts(tol);
         let sol = solve(&mut Arenstorf, 0.0, initial_state(), PERIOD, &o);
         let err = (sol.y - initial_state()).amax();
         let t = time_per_call(11, 5, || {
-            black_box(solve(&mut Arenstorf, 0.0, black_box(initial_state()), PERIOD, &o));
+            black_box(solve(
+                &mut Arenstorf,
+                0.0,
+                black_box(initial_state()),
+                PERIOD,
+                &o,
+            ));
         });
         println!(
             "{:>8.0e} {:>8} {:>9} {:>10} {:>12.3e} {:>10.1}",
-            tol, sol.stats.steps, sol.stats.rejected, sol.stats.rhs_evals, err, t * 1e6
+            tol,
+            sol.stats.steps,
+            sol.stats.rejected,
+            sol.stats.rhs_evals,
+            err,
+            t * 1e6
         );
     }
     println!();
     println!("# Cost per step beyond the right-hand side");
-    overhead("oscillator", &mut Oscillator, State::<2>::new(1.0, 0.0), 100.0, 1e-8);
+    overhead(
+        "oscillator",
+        &mut Oscillator,
+        State::<2>::new(1.0, 0.0),
+        100.0,
+        1e-8,
+    );
     overhead("arenstorf", &mut Arenstorf, initial_state(), PERIOD, 1e-8);
 }

@@ -82,7 +82,11 @@ pub fn initial_step<const N: usize>(
 ) -> f64 {
     let dnf = sq(f0, y0);
     let dny = sq(y0, y0);
-    let mut h = if dnf <= 1e-10 || dny <= 1e-10 { 1e-6 } else { (dny / dnf).sqrt() * 0.01 };
+    let mut h = if dnf <= 1e-10 || dny <= 1e-10 {
+        1e-6
+    } else {
+        (dny / dnf).sqrt() * 0.01
+    };
     h = h.min(h_max);
     let y1 = y0 + f0 * h;
     let f1 = f_at(h, &y1);
@@ -117,7 +121,10 @@ mod tests {
             let expected = h / fac;
             let (ok, got) = c.next(err, h);
             assert!(ok);
-            assert!((got - expected).abs() <= 1e-14 * expected, "{got} vs {expected}");
+            assert!(
+                (got - expected).abs() <= 1e-14 * expected,
+                "{got} vs {expected}"
+            );
             facold = err.max(1e-4);
             h = got;
         }

@@ -31,7 +31,15 @@ impl<const N: usize> DenseOutput<N> {
         let r2 = y1 - y0;
         let r3 = f0 * h - r2;
         let r4 = r2 - f1 * h - r3;
-        DenseOutput { t0, h, r1: *y0, r2, r3, r4, r5 }
+        DenseOutput {
+            t0,
+            h,
+            r1: *y0,
+            r2,
+            r3,
+            r4,
+            r5,
+        }
     }
 
     /// The state at `t` (meant for `t` within the step; extrapolates outside it).

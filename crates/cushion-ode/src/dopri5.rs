@@ -60,7 +60,11 @@ const D7: f64 = 69997945.0 / 29380423.0;
 
 /// `base + k_1 (h w_1) + k_2 (h w_2) + ...`, added left to right, component by component.
 #[inline(always)]
-fn add_scaled<const N: usize, const M: usize>(base: &State<N>, h: f64, terms: [(f64, &State<N>); M]) -> State<N> {
+fn add_scaled<const N: usize, const M: usize>(
+    base: &State<N>,
+    h: f64,
+    terms: [(f64, &State<N>); M],
+) -> State<N> {
     let hw = terms.map(|(w, _)| h * w);
     let mut out = *base;
     for n in 0..N {
@@ -100,7 +104,10 @@ pub struct Dopri5<const N: usize> {
 
 impl<const N: usize> Dopri5<N> {
     pub fn new() -> Self {
-        Dopri5 { k: [State::<N>::zeros(); 5], stage6_input: State::<N>::zeros() }
+        Dopri5 {
+            k: [State::<N>::zeros(); 5],
+            stage6_input: State::<N>::zeros(),
+        }
     }
 }
 
@@ -124,26 +131,68 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
     }
 
     #[inline]
-    fn step<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>, f0: &State<N>, h: f64) -> Attempt<N> {
+    fn step<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+    ) -> Attempt<N> {
         let k1 = f0;
         let k2 = sys.rhs(t + C2 * h, &add_scaled(y, h, [(A21, k1)]));
         let k3 = sys.rhs(t + C3 * h, &add_scaled(y, h, [(A31, k1), (A32, &k2)]));
-        let k4 = sys.rhs(t + C4 * h, &add_scaled(y, h, [(A41, k1), (A42, &k2), (A43, &k3)]));
-        let k5 = sys.rhs(t + C5 * h, &add_scaled(y, h, [(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]));
-        let y6 = add_scaled(y, h, [(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)]);
+        let k4 = sys.rhs(
+            t + C4 * h,
+            &add_scaled(y, h, [(A41, k1), (A42, &k2), (A43, &k3)]),
+        );
+        let k5 = sys.rhs(
+            t + C5 * h,
+            &add_scaled(y, h, [(A51, k1), (A52, &k2), (A53, &k3), (A54, &k4)]),
+        );
+        let y6 = add_scaled(
+            y,
+            h,
+            [(A61, k1), (A62, &k2), (A63, &k3), (A64, &k4), (A65, &k5)],
+        );
         // c6 = 1: `t + 1.0 * h` is `t + h`.
         let k6 = sys.rhs(t + h, &y6);
         let y1 = add_scaled(y, h, [(B1, k1), (B3, &k3), (B4, &k4), (B5, &k5), (B6, &k6)]);
         let f1 = sys.rhs(t + h, &y1);
-        let err = scaled_sum(h, [(E7, &f1), (E1, k1), (E3, &k3), (E4, &k4), (E5, &k5), (E6, &k6)]);
+        let err = scaled_sum(
+            h,
+            [
+                (E7, &f1),
+                (E1, k1),
+                (E3, &k3),
+                (E4, &k4),
+                (E5, &k5),
+                (E6, &k6),
+            ],
+        );
         self.k = [k2, k3, k4, k5, k6];
         self.stage6_input = y6;
-        Attempt { y1, f1, err: Some(err) }
+        Attempt {
+            y1,
+            f1,
+            err: Some(err),
+        }
     }
 
-    fn dense(&self, t: f64, h: f64, y0: &State<N>, y1: &State<N>, f0: &State<N>, f1: &State<N>) -> DenseOutput<N> {
+    fn dense(
+        &self,
+        t: f64,
+        h: f64,
+        y0: &State<N>,
+        y1: &State<N>,
+        f0: &State<N>,
+        f1: &State<N>,
+    ) -> DenseOutput<N> {
         let [_, k3, k4, k5, k6] = &self.k;
-        let r5 = scaled_sum(h, [(D7, f1), (D1, f0), (D3, k3), (D4, k4), (D5, k5), (D6, k6)]);
+        let r5 = scaled_sum(
+            h,
+            [(D7, f1), (D1, f0), (D3, k3), (D4, k4), (D5, k5), (D6, k6)],
+        );
         DenseOutput::new(t, h, y0, y1, f0, f1, r5)
     }
 
@@ -173,7 +222,13 @@ mod tests {
         for (c, tc) in [C2, C3, C4, C5, 1.0].iter().zip(&T.c[1..]) {
             same(*c, *tc);
         }
-        let a: [&[f64]; 5] = [&[A21], &[A31, A32], &[A41, A42, A43], &[A51, A52, A53, A54], &[A61, A62, A63, A64, A65]];
+        let a: [&[f64]; 5] = [
+            &[A21],
+            &[A31, A32],
+            &[A41, A42, A43],
+            &[A51, A52, A53, A54],
+            &[A61, A62, A63, A64, A65],
+        ];
         for (row, trow) in a.iter().zip(&T.a[1..]) {
             assert_eq!(row.len(), trow.len());
             for (x, tx) in row.iter().zip(trow.iter()) {
@@ -215,10 +270,21 @@ mod tests {
             let db = generic.dense(t, hd, &y, &b.y1, &f0, &b.f1);
             for theta in [0.0, 0.2, 0.5, 0.77, 1.0] {
                 let tt = t + theta * hd;
-                assert_eq!(bits(&da.eval(tt)), bits(&db.eval(tt)), "dense at theta {theta}, h = {h}");
+                assert_eq!(
+                    bits(&da.eval(tt)),
+                    bits(&db.eval(tt)),
+                    "dense at theta {theta}, h = {h}"
+                );
             }
-            let (sa, sb) = (fast.stiffness_estimate(h, &a.y1, &a.f1), generic.stiffness_estimate(h, &b.y1, &b.f1));
-            assert_eq!(sa.map(f64::to_bits), sb.map(f64::to_bits), "stiffness, h = {h}");
+            let (sa, sb) = (
+                fast.stiffness_estimate(h, &a.y1, &a.f1),
+                generic.stiffness_estimate(h, &b.y1, &b.f1),
+            );
+            assert_eq!(
+                sa.map(f64::to_bits),
+                sb.map(f64::to_bits),
+                "stiffness, h = {h}"
+            );
         }
         assert_eq!(fast.rhs_evals_per_step(), generic.rhs_evals_per_step());
         assert_eq!(fast.order(), generic.order());

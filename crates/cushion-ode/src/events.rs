@@ -6,7 +6,13 @@
 /// the new side (or zero). Returns the time on the far side of the crossing: a point where `g`
 /// is on the new side (or zero), within a few ulp of the exact root, so the event cannot fire
 /// again from there.
-pub fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64, mut gb: f64) -> f64 {
+pub fn locate(
+    mut g: impl FnMut(f64) -> f64,
+    mut a: f64,
+    mut ga: f64,
+    mut b: f64,
+    mut gb: f64,
+) -> f64 {
     debug_assert!(ga != 0.0);
     let old_negative = ga < 0.0;
     let on_new_side = |x: f64| if old_negative { x >= 0.0 } else { x <= 0.0 };
@@ -22,7 +28,11 @@ pub fn locate(mut g: impl FnMut(f64) -> f64, mut a: f64, mut ga: f64, mut b: f64
         if b - a <= 4.0 * f64::EPSILON * scale {
             break;
         }
-        let mut m = if wb != wa { b - wb * (b - a) / (wb - wa) } else { 0.5 * (a + b) };
+        let mut m = if wb != wa {
+            b - wb * (b - a) / (wb - wa)
+        } else {
+            0.5 * (a + b)
+        };
         // Safeguard: every third iteration must have halved the bracket, else bisect.
         if iter % 3 == 2 {
             if b - a > 0.5 * width_before {
@@ -68,7 +78,10 @@ mod tests {
         let root = 2f64.sqrt();
         let t = locate(|x| x * x - 2.0, 1.0, -1.0, 2.0, 2.0);
         assert!(t * t - 2.0 >= 0.0, "far side");
-        assert!((t - root).abs() <= 4.0 * f64::EPSILON * 2.0, "{t} vs {root}");
+        assert!(
+            (t - root).abs() <= 4.0 * f64::EPSILON * 2.0,
+            "{t} vs {root}"
+        );
     }
 
     #[test]
@@ -81,7 +94,13 @@ mod tests {
     #[test]
     fn flat_function_converges_by_bisection() {
         // x^9 is very flat near 0: regula falsi alone stalls.
-        let t = locate(|x: f64| (x - 0.3).powi(9), 0.0, -(0.3f64.powi(9)), 1.0, 0.7f64.powi(9));
+        let t = locate(
+            |x: f64| (x - 0.3).powi(9),
+            0.0,
+            -(0.3f64.powi(9)),
+            1.0,
+            0.7f64.powi(9),
+        );
         assert!((t - 0.3).abs() < 1e-3, "{t}");
         assert!((t - 0.3f64).powi(9) >= 0.0);
     }

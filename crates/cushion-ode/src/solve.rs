@@ -33,11 +33,20 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
 }
 
 /// Check the settings; `Err` holds the message of an `InvalidInput` status.
-fn check_options<const N: usize>(t0: f64, y0: &State<N>, t_end: f64, opts: &SolverOptions, n_events: usize) -> Result<(), String> {
+fn check_options<const N: usize>(
+    t0: f64,
+    y0: &State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
+    n_events: usize,
+) -> Result<(), String> {
     let tol_ok = |name: &str, tol: &Tolerance, allow_zero: bool| -> Result<(), String> {
         if let Tolerance::PerComponent(v) = tol {
             if v.len() != N {
-                return Err(format!("{name} has {} components, the state has {N}", v.len()));
+                return Err(format!(
+                    "{name} has {} components, the state has {N}",
+                    v.len()
+                ));
             }
         }
         for i in 0..N {
@@ -55,7 +64,9 @@ fn check_options<const N: usize>(t0: f64, y0: &State<N>, t_end: f64, opts: &Solv
         return Err("rtol and atol are both zero for a component".into());
     }
     if !t0.is_finite() || !t_end.is_finite() || t_end < t0 {
-        return Err(format!("t0 = {t0}, t_end = {t_end}: need finite t0 <= t_end"));
+        return Err(format!(
+            "t0 = {t0}, t_end = {t_end}: need finite t0 <= t_end"
+        ));
     }
     if !(opts.h_max > 0.0) {
         return Err(format!("h_max = {}: must be > 0", opts.h_max));
@@ -66,12 +77,20 @@ fn check_options<const N: usize>(t0: f64, y0: &State<N>, t_end: f64, opts: &Solv
         }
     }
     if !opts.method.is_adaptive() && !(opts.fixed_step > 0.0 && opts.fixed_step.is_finite()) {
-        return Err(format!("fixed_step = {}: must be a finite number > 0", opts.fixed_step));
+        return Err(format!(
+            "fixed_step = {}: must be a finite number > 0",
+            opts.fixed_step
+        ));
     }
     if n_events > MAX_EVENTS {
         return Err(format!("{n_events} event functions: at most {MAX_EVENTS}"));
     }
-    if !(0.0 < opts.min_ratio && opts.min_ratio < 1.0 && opts.max_ratio > 1.0 && opts.safety > 0.0 && opts.safety <= 1.0) {
+    if !(0.0 < opts.min_ratio
+        && opts.min_ratio < 1.0
+        && opts.max_ratio > 1.0
+        && opts.safety > 0.0
+        && opts.safety <= 1.0)
+    {
         return Err("step controller settings out of range".into());
     }
     if !y0.iter().all(|v| v.is_finite()) {
@@ -115,7 +134,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             atol[i] = opts.atol.get(i);
         }
         let n_events = sys.event_count();
-        let mut stops: Vec<f64> = opts.time_stops.iter().copied().filter(|&s| s > t0 && s < t_end).collect();
+        let mut stops: Vec<f64> = opts
+            .time_stops
+            .iter()
+            .copied()
+            .filter(|&s| s > t0 && s < t_end)
+            .collect();
         stops.sort_by(|a, b| a.total_cmp(b));
         stops.dedup();
         stops.reserve(16);
@@ -123,7 +147,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         let scan_fractions = if n_events == 0 {
             Vec::new()
         } else {
-            (1..segments.min(MAX_PRECOMPUTED_FRACTIONS + 1)).map(|k| k as f64 / segments as f64).collect()
+            (1..segments.min(MAX_PRECOMPUTED_FRACTIONS + 1))
+                .map(|k| k as f64 / segments as f64)
+                .collect()
         };
         Integration {
             sys,
@@ -223,7 +249,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.record_output(None, t0, &y0);
         }
         if !self.f.iter().all(|v| v.is_finite()) {
-            return self.finish(Status::NonFinite, format!("f(t0, y0) is not finite at t = {t0}"));
+            return self.finish(
+                Status::NonFinite,
+                format!("f(t0, y0) is not finite at t = {t0}"),
+            );
         }
         let mut g0 = [0.0; MAX_EVENTS];
         self.eval_events(t0, &y0, &mut g0);
@@ -234,8 +263,13 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
         let adaptive = stepper.is_adaptive();
         let h_max = self.opts.h_max.min(self.t_end - t0);
-        let mut controller =
-            PiController::new(stepper.order(), self.opts.safety, self.opts.beta, self.opts.min_ratio, self.opts.max_ratio);
+        let mut controller = PiController::new(
+            stepper.order(),
+            self.opts.safety,
+            self.opts.beta,
+            self.opts.min_ratio,
+            self.opts.max_ratio,
+        );
         let mut stiffness = StiffnessDetector::default();
         let mut h = if !adaptive {
             self.opts.fixed_step
@@ -249,11 +283,19 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
         loop {
             if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
-                let msg = format!("step limit {} reached at t = {}", self.opts.max_steps, self.t);
+                let msg = format!(
+                    "step limit {} reached at t = {}",
+                    self.opts.max_steps, self.t
+                );
                 return self.finish(Status::MaxSteps, msg);
             }
             // The next point the step must land on exactly.
-            let next_stop = self.stops.first().copied().unwrap_or(self.t_end).min(self.t_end);
+            let next_stop = self
+                .stops
+                .first()
+                .copied()
+                .unwrap_or(self.t_end)
+                .min(self.t_end);
             if adaptive {
                 h = h.min(h_max);
             } else {
@@ -274,10 +316,13 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.stats.rhs_evals += stepper.rhs_evals_per_step();
             let finite = attempt.y1.iter().all(|v| v.is_finite())
                 && attempt.f1.iter().all(|v| v.is_finite())
-                && attempt.err.map_or(true, |e| e.iter().all(|v| v.is_finite()));
+                && attempt
+                    .err
+                    .map_or(true, |e| e.iter().all(|v| v.is_finite()));
             if !finite {
                 if !adaptive {
-                    let msg = format!("non-finite state in the step from t = {t} (fixed step {h:e})");
+                    let msg =
+                        format!("non-finite state in the step from t = {t} (fixed step {h:e})");
                     return self.finish(Status::NonFinite, msg);
                 }
                 self.stats.rejected += 1;
@@ -321,12 +366,25 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             // Events inside (t, t1].
             let (t_cut, y_cut, action) = self.scan_events(&dense, t, t1, &attempt.y1, &mut ctl);
             let cut = action != EventAction::Continue;
-            let (t_new, mut y_new) = if cut { (t_cut, y_cut) } else { (t1, attempt.y1) };
+            let (t_new, mut y_new) = if cut {
+                (t_cut, y_cut)
+            } else {
+                (t1, attempt.y1)
+            };
 
             // The step as it ended, before any handler changed the state.
             let y_end = if cut { dense.eval(t_new) } else { y_new };
             self.record_output(Some(&dense), t_new, &y_end);
-            self.sys.on_step(&Step { t0: t, t1: t_new, y0: &y, y1: &y_end, dense: &dense }, &mut ctl);
+            self.sys.on_step(
+                &Step {
+                    t0: t,
+                    t1: t_new,
+                    y0: &y,
+                    y1: &y_end,
+                    dense: &dense,
+                },
+                &mut ctl,
+            );
             self.t = t_new;
             self.y = y_new;
             self.take_new_stops(&mut ctl);
@@ -337,7 +395,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             if cut {
                 // State or regime changed: evaluate f anew and select the step size anew.
                 if !self.restart_at(t_new, &y_new) {
-                    return self.finish(Status::NonFinite, format!("f is not finite after the event at t = {t_new}"));
+                    return self.finish(
+                        Status::NonFinite,
+                        format!("f is not finite after the event at t = {t_new}"),
+                    );
                 }
                 if adaptive {
                     controller.reset();
@@ -362,7 +423,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     return self.finish(Status::StoppedByEvent, "");
                 }
                 if !self.restart_at(t_new, &y_new) {
-                    return self.finish(Status::NonFinite, format!("f is not finite at the time stop t = {t_new}"));
+                    return self.finish(
+                        Status::NonFinite,
+                        format!("f is not finite at the time stop t = {t_new}"),
+                    );
                 }
             }
         }
@@ -430,7 +494,11 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         let mut g_lo = self.g;
         let mut k = 1;
         while k <= segments {
-            let hi_t = if k == segments { t1 } else { t0 + (t1 - t0) * fraction(k) };
+            let hi_t = if k == segments {
+                t1
+            } else {
+                t0 + (t1 - t0) * fraction(k)
+            };
             if hi_t <= lo_t {
                 k += 1;
                 continue;
@@ -467,7 +535,11 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 continue;
             }
             // Handle every event at that instant, in index order.
-            let y_state = if t_first == t1 { *y1 } else { dense.eval(t_first) };
+            let y_state = if t_first == t1 {
+                *y1
+            } else {
+                dense.eval(t_first)
+            };
             let mut y_after = y_state;
             let mut strongest = EventAction::Continue;
             for i in 0..n {
@@ -475,7 +547,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     continue;
                 }
                 self.stats.events += 1;
-                self.events.push(EventRecord { t: t_first, index: i, rising: g_lo[i] < 0.0, state: y_state });
+                self.events.push(EventRecord {
+                    t: t_first,
+                    index: i,
+                    rising: g_lo[i] < 0.0,
+                    state: y_state,
+                });
                 let action = self.sys.on_event(i, t_first, &mut y_after, ctl);
                 strongest = match (strongest, action) {
                     (EventAction::Stop, _) | (_, EventAction::Stop) => EventAction::Stop,

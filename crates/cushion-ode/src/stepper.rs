@@ -26,9 +26,24 @@ pub trait Stepper<const N: usize> {
     /// Right-hand-side evaluations one attempt costs (including `f1`).
     fn rhs_evals_per_step(&self) -> u64;
     /// Attempt a step.
-    fn step<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>, f0: &State<N>, h: f64) -> Attempt<N>;
+    fn step<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+    ) -> Attempt<N>;
     /// Dense output of the last attempt (valid once it is accepted).
-    fn dense(&self, t: f64, h: f64, y0: &State<N>, y1: &State<N>, f0: &State<N>, f1: &State<N>) -> DenseOutput<N>;
+    fn dense(
+        &self,
+        t: f64,
+        h: f64,
+        y0: &State<N>,
+        y1: &State<N>,
+        f0: &State<N>,
+        f1: &State<N>,
+    ) -> DenseOutput<N>;
     /// Hairer's stiffness quotient `h * |lambda|` estimate of the last attempt, if the method has one.
     fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64>;
 }
@@ -43,7 +58,11 @@ pub struct ExplicitRk<const N: usize> {
 
 impl<const N: usize> ExplicitRk<N> {
     pub fn new(tab: &'static Tableau) -> Self {
-        ExplicitRk { tab, k: [State::<N>::zeros(); MAX_STAGES], last_stage_input: State::<N>::zeros() }
+        ExplicitRk {
+            tab,
+            k: [State::<N>::zeros(); MAX_STAGES],
+            last_stage_input: State::<N>::zeros(),
+        }
     }
 }
 
@@ -61,7 +80,14 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
     }
 
     #[inline]
-    fn step<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>, f0: &State<N>, h: f64) -> Attempt<N> {
+    fn step<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+    ) -> Attempt<N> {
         let tab = self.tab;
         let s = tab.c.len();
         self.k[0] = *f0;
@@ -97,7 +123,15 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
         Attempt { y1, f1, err }
     }
 
-    fn dense(&self, t: f64, h: f64, y0: &State<N>, y1: &State<N>, f0: &State<N>, f1: &State<N>) -> DenseOutput<N> {
+    fn dense(
+        &self,
+        t: f64,
+        h: f64,
+        y0: &State<N>,
+        y1: &State<N>,
+        f0: &State<N>,
+        f1: &State<N>,
+    ) -> DenseOutput<N> {
         let s = self.tab.c.len();
         let mut r5 = State::<N>::zeros();
         if !self.tab.d.is_empty() {
@@ -112,7 +146,8 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
     }
 
     fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64> {
-        if self.tab.e.is_empty() || self.tab.c.len() < 2 || self.tab.c[self.tab.c.len() - 1] != 1.0 {
+        if self.tab.e.is_empty() || self.tab.c.len() < 2 || self.tab.c[self.tab.c.len() - 1] != 1.0
+        {
             return None;
         }
         // Two evaluations at t + h: f(last stage input) and f(y1) (Hairer, DOPRI5).

@@ -55,7 +55,11 @@ pub struct Control {
 
 impl Control {
     pub(crate) fn new() -> Self {
-        Control { new_time_stops: [0.0; 8], n_new_time_stops: 0, stop_requested: false }
+        Control {
+            new_time_stops: [0.0; 8],
+            n_new_time_stops: 0,
+            stop_requested: false,
+        }
     }
 
     /// Step onto time `t` exactly (a point where the right-hand side is not smooth), never
@@ -112,7 +116,13 @@ pub trait OdeSystem<const N: usize> {
 
     /// Called at a located crossing of `g_i`, at time `t` (on the far side of the crossing).
     /// It may change `y` and the regime; it must say so by returning `Restart`.
-    fn on_event(&mut self, _i: usize, _t: f64, _y: &mut State<N>, _ctl: &mut Control) -> EventAction {
+    fn on_event(
+        &mut self,
+        _i: usize,
+        _t: f64,
+        _y: &mut State<N>,
+        _ctl: &mut Control,
+    ) -> EventAction {
         EventAction::Stop
     }
 

@@ -35,10 +35,28 @@ pub static DORMAND_PRINCE_54: Tableau = Tableau {
         &[1.0 / 5.0],
         &[3.0 / 40.0, 9.0 / 40.0],
         &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
-        &[19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0],
-        &[9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0],
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
     ],
-    b: &[35.0 / 384.0, 0.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0],
+    b: &[
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
     e: &[
         71.0 / 57600.0,
         0.0,
@@ -71,8 +89,15 @@ pub static CLASSICAL_RK4: Tableau = Tableau {
 };
 
 /// Explicit Euler.
-pub static EXPLICIT_EULER: Tableau =
-    Tableau { name: "euler", order: 1, c: &[0.0], a: &[&[]], b: &[1.0], e: &[], d: &[] };
+pub static EXPLICIT_EULER: Tableau = Tableau {
+    name: "euler",
+    order: 1,
+    c: &[0.0],
+    a: &[&[]],
+    b: &[1.0],
+    e: &[],
+    d: &[],
+};
 
 /// Most stages of any tableau here.
 pub const MAX_STAGES: usize = 6;
@@ -89,7 +114,11 @@ mod tests {
         for (i, row) in t.a.iter().enumerate() {
             assert_eq!(row.len(), i);
             let sum: f64 = row.iter().sum();
-            assert!((sum - t.c[i]).abs() < 1e-14, "{} row {i}: sum a = {sum} != c", t.name);
+            assert!(
+                (sum - t.c[i]).abs() < 1e-14,
+                "{} row {i}: sum a = {sum} != c",
+                t.name
+            );
         }
         let sb: f64 = t.b.iter().sum();
         assert!((sb - 1.0).abs() < 1e-14, "{}: sum b = {sb}", t.name);

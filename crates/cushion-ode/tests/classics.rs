@@ -34,14 +34,28 @@ fn arenstorf_orbit_closes_after_one_period() {
 #[test]
 fn bouncing_ball_first_ten_bounces_match_closed_form() {
     for method in [Method::Dp5, Method::Rk4] {
-        let mut ball = BouncingBall { gravity: 9.81, restitution: 0.8, stop_after: 10, bounces: 0 };
+        let mut ball = BouncingBall {
+            gravity: 9.81,
+            restitution: 0.8,
+            stop_after: 10,
+            bounces: 0,
+        };
         let exact = ball.bounce_times(1.0, 10);
-        let opts = SolverOptions { method, fixed_step: 0.01, ..tol_opts(1e-10) };
+        let opts = SolverOptions {
+            method,
+            fixed_step: 0.01,
+            ..tol_opts(1e-10)
+        };
         let sol = solve(&mut ball, 0.0, State::<2>::new(1.0, 0.0), 100.0, &opts);
         assert_eq!(sol.status, Status::StoppedByEvent, "{method:?}");
         assert_eq!(sol.events.len(), 10, "{method:?}");
         for (ev, t) in sol.events.iter().zip(&exact) {
-            assert!((ev.t - t).abs() < 1e-12, "{method:?}: bounce at {} vs {}", ev.t, t);
+            assert!(
+                (ev.t - t).abs() < 1e-12,
+                "{method:?}: bounce at {} vs {}",
+                ev.t,
+                t
+            );
             assert!(!ev.rising);
         }
     }
@@ -49,29 +63,62 @@ fn bouncing_ball_first_ten_bounces_match_closed_form() {
 
 #[test]
 fn stiffness_test_fires_on_van_der_pol_mu_1000() {
-    let opts = SolverOptions { stiffness: StiffnessAction::Warn, ..tol_opts(1e-6) };
-    let sol = solve(&mut VanDerPol { mu: 1000.0 }, 0.0, State::<2>::new(2.0, 0.0), 1.0, &opts);
+    let opts = SolverOptions {
+        stiffness: StiffnessAction::Warn,
+        ..tol_opts(1e-6)
+    };
+    let sol = solve(
+        &mut VanDerPol { mu: 1000.0 },
+        0.0,
+        State::<2>::new(2.0, 0.0),
+        1.0,
+        &opts,
+    );
     assert!(sol.status.is_ok(), "{:?}", sol.status);
     assert!(sol.stats.stiff);
     let since = sol.stats.stiff_since.unwrap();
     assert!((0.0..1.0).contains(&since));
 
-    let stop = SolverOptions { stiffness: StiffnessAction::Stop, ..tol_opts(1e-6) };
-    let sol = solve(&mut VanDerPol { mu: 1000.0 }, 0.0, State::<2>::new(2.0, 0.0), 1.0, &stop);
+    let stop = SolverOptions {
+        stiffness: StiffnessAction::Stop,
+        ..tol_opts(1e-6)
+    };
+    let sol = solve(
+        &mut VanDerPol { mu: 1000.0 },
+        0.0,
+        State::<2>::new(2.0, 0.0),
+        1.0,
+        &stop,
+    );
     assert_eq!(sol.status, Status::Stiff);
     assert!(sol.t < 1.0);
 }
 
 #[test]
 fn stiffness_test_fires_on_robertson() {
-    let opts = SolverOptions { stiffness: StiffnessAction::Stop, ..tol_opts(1e-6) };
-    let sol = solve(&mut Robertson, 0.0, State::<3>::new(1.0, 0.0, 0.0), 1e3, &opts);
+    let opts = SolverOptions {
+        stiffness: StiffnessAction::Stop,
+        ..tol_opts(1e-6)
+    };
+    let sol = solve(
+        &mut Robertson,
+        0.0,
+        State::<3>::new(1.0, 0.0, 0.0),
+        1e3,
+        &opts,
+    );
     assert_eq!(sol.status, Status::Stiff);
 }
 
 #[test]
 fn stiffness_test_is_silent_on_non_stiff_problems() {
-    let sol = solve(&mut VanDerPol { mu: 1.0 }, 0.0, State::<2>::new(2.0, 0.0), 20.0, &tol_opts(1e-8));
+    let sol = solve(
+        &mut VanDerPol { mu: 1.0 },
+        0.0,
+        State::<2>::new(2.0, 0.0),
+        20.0,
+        &tol_opts(1e-8),
+    );
     assert_eq!(sol.status, Status::Success);
     assert!(!sol.stats.stiff);
 }

@@ -1,7 +1,8 @@
 //! Event detection, location, actions and time stops.
 
 use cushion_ode::{
-    solve, Control, Direction, EventAction, Method, OdeSystem, Output, SolverOptions, State, Status, Tolerance,
+    solve, Control, Direction, EventAction, Method, OdeSystem, Output, SolverOptions, State,
+    Status, Tolerance,
 };
 
 /// `x' = 1`: `x = t`. Event 0: `(x - a)(x - b)` (both directions), record only.
@@ -20,7 +21,13 @@ impl OdeSystem<1> for TwoCrossings {
     fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
         g[0] = (y[0] - self.a) * (y[0] - self.b);
     }
-    fn on_event(&mut self, _i: usize, _t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
+    fn on_event(
+        &mut self,
+        _i: usize,
+        _t: f64,
+        _y: &mut State<1>,
+        _ctl: &mut Control,
+    ) -> EventAction {
         EventAction::Continue
     }
 }
@@ -30,7 +37,10 @@ fn two_sign_changes_inside_one_step_are_both_found() {
     // The solution is linear: the whole interval is one step, and g has the same sign at both
     // of its ends. Checking only step ends would miss both crossings (SciPy issue 9228).
     let mut sys = TwoCrossings { a: 0.5, b: 0.6 };
-    let opts = SolverOptions { h0: Some(1.0), ..Default::default() };
+    let opts = SolverOptions {
+        h0: Some(1.0),
+        ..Default::default()
+    };
     let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &opts);
     assert_eq!(sol.status, Status::Success);
     assert_eq!(sol.stats.steps, 1, "one step over the whole interval");
@@ -60,7 +70,13 @@ impl OdeSystem<2> for ElasticBall {
     fn event_direction(&self, _i: usize) -> Direction {
         Direction::Both
     }
-    fn on_event(&mut self, _i: usize, _t: f64, y: &mut State<2>, _ctl: &mut Control) -> EventAction {
+    fn on_event(
+        &mut self,
+        _i: usize,
+        _t: f64,
+        y: &mut State<2>,
+        _ctl: &mut Control,
+    ) -> EventAction {
         self.bounces += 1;
         y[0] = 0.0;
         y[1] = y[1].abs();
@@ -72,7 +88,13 @@ impl OdeSystem<2> for ElasticBall {
 fn an_event_that_is_zero_at_a_restart_does_not_fire_again() {
     // Drop from x = 0.5 with g = 1: bounces every 2 s after t = 1, the next one 2 s later.
     let mut ball = ElasticBall { bounces: 0 };
-    let sol = solve(&mut ball, 0.0, State::<2>::new(0.5, 0.0), 6.5, &SolverOptions::default());
+    let sol = solve(
+        &mut ball,
+        0.0,
+        State::<2>::new(0.5, 0.0),
+        6.5,
+        &SolverOptions::default(),
+    );
     assert_eq!(sol.status, Status::Success);
     let times: Vec<f64> = sol.events.iter().map(|e| e.t).collect();
     assert_eq!(times.len(), 3, "{times:?}");
@@ -89,14 +111,22 @@ struct Kink {
 
 impl OdeSystem<1> for Kink {
     fn rhs(&self, t: f64, _y: &State<1>) -> State<1> {
-        State::<1>::new(if t < self.t_kink { 1.0 } else { 1.0 - 3.0 * (t - self.t_kink) })
+        State::<1>::new(if t < self.t_kink {
+            1.0
+        } else {
+            1.0 - 3.0 * (t - self.t_kink)
+        })
     }
 }
 
 #[test]
 fn time_stops_are_hit_exactly() {
     let t_kink = 0.333_7;
-    let opts = SolverOptions { time_stops: vec![t_kink], output: Output::Steps, ..Default::default() };
+    let opts = SolverOptions {
+        time_stops: vec![t_kink],
+        output: Output::Steps,
+        ..Default::default()
+    };
     let sol = solve(&mut Kink { t_kink }, 0.0, State::<1>::new(0.0), 1.0, &opts);
     assert_eq!(sol.status, Status::Success);
     assert!(sol.ts.contains(&t_kink), "{:?}", sol.ts);
@@ -104,7 +134,10 @@ fn time_stops_are_hit_exactly() {
     let exact = 1.0 - 1.5 * (1.0 - t_kink) * (1.0 - t_kink);
     assert!((sol.y[0] - exact).abs() < 1e-14, "{} vs {exact}", sol.y[0]);
     // Without the stop a step crosses the kink and the answer is only within tolerance.
-    let opts = SolverOptions { output: Output::Steps, ..Default::default() };
+    let opts = SolverOptions {
+        output: Output::Steps,
+        ..Default::default()
+    };
     let sol = solve(&mut Kink { t_kink }, 0.0, State::<1>::new(0.0), 1.0, &opts);
     assert!(!sol.ts.contains(&t_kink));
     assert!((sol.y[0] - exact).abs() > 1e-14);
@@ -145,8 +178,17 @@ impl OdeSystem<2> for Scheduled {
 #[test]
 fn time_stops_added_while_integrating_are_hit_exactly() {
     for method in [Method::Dp5, Method::Rk4, Method::Euler] {
-        let mut sys = Scheduled { delay: 0.07, braking: false, stop_time: None };
-        let opts = SolverOptions { method, fixed_step: 0.013, output: Output::Steps, ..Default::default() };
+        let mut sys = Scheduled {
+            delay: 0.07,
+            braking: false,
+            stop_time: None,
+        };
+        let opts = SolverOptions {
+            method,
+            fixed_step: 0.013,
+            output: Output::Steps,
+            ..Default::default()
+        };
         let sol = solve(&mut sys, 0.0, State::<2>::new(0.0, 2.0), 1.0, &opts);
         assert_eq!(sol.status, Status::Success, "{method:?}");
         let t_stop = sys.stop_time.unwrap();
@@ -178,7 +220,13 @@ impl OdeSystem<1> for Simultaneous {
         g[0] = y[0] - 0.25;
         g[1] = 2.0 * (y[0] - 0.25);
     }
-    fn on_event(&mut self, i: usize, _t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
+    fn on_event(
+        &mut self,
+        i: usize,
+        _t: f64,
+        _y: &mut State<1>,
+        _ctl: &mut Control,
+    ) -> EventAction {
         self.order.push(i);
         EventAction::Continue
     }
@@ -187,7 +235,13 @@ impl OdeSystem<1> for Simultaneous {
 #[test]
 fn simultaneous_events_are_all_handled_in_order() {
     let mut sys = Simultaneous { order: vec![] };
-    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &SolverOptions::default());
+    let sol = solve(
+        &mut sys,
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &SolverOptions::default(),
+    );
     assert_eq!(sys.order, vec![0, 1]);
     assert_eq!(sol.events.len(), 2);
     assert_eq!(sol.events[0].t, sol.events[1].t);
@@ -205,7 +259,12 @@ impl OdeSystem<1> for Domain {
 
 #[test]
 fn a_non_finite_trial_stage_is_rejected_and_retried_smaller() {
-    let opts = SolverOptions { h0: Some(10.0), rtol: Tolerance::Scalar(1e-9), atol: Tolerance::Scalar(1e-12), ..Default::default() };
+    let opts = SolverOptions {
+        h0: Some(10.0),
+        rtol: Tolerance::Scalar(1e-9),
+        atol: Tolerance::Scalar(1e-12),
+        ..Default::default()
+    };
     let sol = solve(&mut Domain, 0.0, State::<1>::new(1.0), 5.0, &opts);
     assert_eq!(sol.status, Status::Success);
     assert!(sol.stats.rejected >= 1);
@@ -224,30 +283,72 @@ impl OdeSystem<1> for NanAfter {
 
 #[test]
 fn a_right_hand_side_that_returns_nan_gives_a_status_not_a_panic() {
-    let sol = solve(&mut NanAfter { t_bad: 0.5 }, 0.0, State::<1>::new(0.0), 1.0, &SolverOptions::default());
+    let sol = solve(
+        &mut NanAfter { t_bad: 0.5 },
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &SolverOptions::default(),
+    );
     assert_eq!(sol.status, Status::StepTooSmall, "{}", sol.message);
     assert!((sol.t - 0.5).abs() < 1e-6, "stopped at {}", sol.t);
-    let euler = SolverOptions { method: Method::Euler, fixed_step: 0.01, ..Default::default() };
-    let sol = solve(&mut NanAfter { t_bad: 0.5 }, 0.0, State::<1>::new(0.0), 1.0, &euler);
+    let euler = SolverOptions {
+        method: Method::Euler,
+        fixed_step: 0.01,
+        ..Default::default()
+    };
+    let sol = solve(
+        &mut NanAfter { t_bad: 0.5 },
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &euler,
+    );
     assert_eq!(sol.status, Status::NonFinite);
-    let sol = solve(&mut NanAfter { t_bad: -1.0 }, 0.0, State::<1>::new(0.0), 1.0, &SolverOptions::default());
+    let sol = solve(
+        &mut NanAfter { t_bad: -1.0 },
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &SolverOptions::default(),
+    );
     assert_eq!(sol.status, Status::NonFinite);
 }
 
 #[test]
 fn bad_settings_give_invalid_input() {
-    let opts = SolverOptions { rtol: Tolerance::Scalar(-1.0), ..Default::default() };
+    let opts = SolverOptions {
+        rtol: Tolerance::Scalar(-1.0),
+        ..Default::default()
+    };
     let sol = solve(&mut Domain, 0.0, State::<1>::new(1.0), 5.0, &opts);
     assert_eq!(sol.status, Status::InvalidInput);
     assert!(sol.message.contains("rtol"));
-    let sol = solve(&mut Domain, 1.0, State::<1>::new(1.0), 0.0, &SolverOptions::default());
+    let sol = solve(
+        &mut Domain,
+        1.0,
+        State::<1>::new(1.0),
+        0.0,
+        &SolverOptions::default(),
+    );
     assert_eq!(sol.status, Status::InvalidInput);
 }
 
 #[test]
 fn step_limit_gives_max_steps() {
-    let opts = SolverOptions { max_steps: 5, rtol: Tolerance::Scalar(1e-12), atol: Tolerance::Scalar(1e-12), ..Default::default() };
-    let sol = solve(&mut cushion_ode::test_models::exponential::Oscillator, 0.0, State::<2>::new(1.0, 0.0), 100.0, &opts);
+    let opts = SolverOptions {
+        max_steps: 5,
+        rtol: Tolerance::Scalar(1e-12),
+        atol: Tolerance::Scalar(1e-12),
+        ..Default::default()
+    };
+    let sol = solve(
+        &mut cushion_ode::test_models::exponential::Oscillator,
+        0.0,
+        State::<2>::new(1.0, 0.0),
+        100.0,
+        &opts,
+    );
     assert_eq!(sol.status, Status::MaxSteps);
 }
 
@@ -260,28 +361,62 @@ fn output_at_requested_times_uses_the_dense_output() {
         atol: Tolerance::Scalar(1e-12),
         ..Default::default()
     };
-    let sol = solve(&mut cushion_ode::test_models::exponential::Oscillator, 0.0, State::<2>::new(1.0, 0.0), 10.0, &opts);
+    let sol = solve(
+        &mut cushion_ode::test_models::exponential::Oscillator,
+        0.0,
+        State::<2>::new(1.0, 0.0),
+        10.0,
+        &opts,
+    );
     assert_eq!(sol.ts, times);
     for (t, y) in sol.ts.iter().zip(&sol.ys) {
         assert!((y[0] - t.cos()).abs() < 1e-8, "t = {t}");
     }
-    let plain = SolverOptions { output: Output::None, ..opts.clone() };
-    let without = solve(&mut cushion_ode::test_models::exponential::Oscillator, 0.0, State::<2>::new(1.0, 0.0), 10.0, &plain);
-    assert_eq!(sol.stats, without.stats, "output points must not change the steps");
+    let plain = SolverOptions {
+        output: Output::None,
+        ..opts.clone()
+    };
+    let without = solve(
+        &mut cushion_ode::test_models::exponential::Oscillator,
+        0.0,
+        State::<2>::new(1.0, 0.0),
+        10.0,
+        &plain,
+    );
+    assert_eq!(
+        sol.stats, without.stats,
+        "output points must not change the steps"
+    );
 }
 
 #[test]
 fn per_component_tolerances_are_used() {
     use cushion_ode::test_models::exponential::Exponential;
-    let mut sys = Exponential { lambda: [-1.0, -2.0] };
-    let loose = SolverOptions { rtol: Tolerance::PerComponent(vec![1e-3, 1e-3]), atol: Tolerance::Scalar(1e-12), ..Default::default() };
-    let tight = SolverOptions { rtol: Tolerance::PerComponent(vec![1e-3, 1e-10]), atol: Tolerance::Scalar(1e-12), ..Default::default() };
+    let mut sys = Exponential {
+        lambda: [-1.0, -2.0],
+    };
+    let loose = SolverOptions {
+        rtol: Tolerance::PerComponent(vec![1e-3, 1e-3]),
+        atol: Tolerance::Scalar(1e-12),
+        ..Default::default()
+    };
+    let tight = SolverOptions {
+        rtol: Tolerance::PerComponent(vec![1e-3, 1e-10]),
+        atol: Tolerance::Scalar(1e-12),
+        ..Default::default()
+    };
     let y0 = State::<2>::new(1.0, 1.0);
     let a = solve(&mut sys, 0.0, y0, 3.0, &loose);
     let b = solve(&mut sys, 0.0, y0, 3.0, &tight);
     assert!(b.stats.steps > 2 * a.stats.steps);
     let exact = sys.exact(3.0, &y0);
     assert!((b.y[1] - exact[1]).abs() < 1e-9);
-    let wrong = SolverOptions { rtol: Tolerance::PerComponent(vec![1e-3]), ..Default::default() };
-    assert_eq!(solve(&mut sys, 0.0, y0, 3.0, &wrong).status, Status::InvalidInput);
+    let wrong = SolverOptions {
+        rtol: Tolerance::PerComponent(vec![1e-3]),
+        ..Default::default()
+    };
+    assert_eq!(
+        solve(&mut sys, 0.0, y0, 3.0, &wrong).status,
+        Status::InvalidInput
+    );
 }

@@ -5,7 +5,11 @@ use cushion_ode::{solve, Method, OdeSystem, SolverOptions, State, StiffnessActio
 
 /// Global error at t = 2 of the oscillator (exact: cos t, -sin t) with a fixed step `h`.
 fn global_error(method: Method, h: f64) -> f64 {
-    let mut opts = SolverOptions { method, stiffness: StiffnessAction::Off, ..Default::default() };
+    let mut opts = SolverOptions {
+        method,
+        stiffness: StiffnessAction::Off,
+        ..Default::default()
+    };
     if method == Method::Dp5 {
         // Every step accepted and of size h: the controller never binds.
         opts.h0 = Some(h);
@@ -16,7 +20,13 @@ fn global_error(method: Method, h: f64) -> f64 {
         opts.fixed_step = h;
     }
     let t_end = 2.0;
-    let sol = solve(&mut Oscillator, 0.0, State::<2>::new(1.0, 0.0), t_end, &opts);
+    let sol = solve(
+        &mut Oscillator,
+        0.0,
+        State::<2>::new(1.0, 0.0),
+        t_end,
+        &opts,
+    );
     assert!(sol.status.is_ok());
     assert_eq!(sol.t, t_end);
     ((sol.y[0] - t_end.cos()).powi(2) + (sol.y[1] + t_end.sin()).powi(2)).sqrt()
@@ -72,7 +82,10 @@ fn dense_local_error(h: f64) -> f64 {
         atol: Tolerance::Scalar(1e10),
         ..Default::default()
     };
-    let mut sys = MidStep { inner: Oscillator, mid: None };
+    let mut sys = MidStep {
+        inner: Oscillator,
+        mid: None,
+    };
     solve(&mut sys, 0.0, State::<2>::new(1.0, 0.0), h, &opts);
     let m = sys.mid.unwrap();
     let t = 0.5 * h;
@@ -100,6 +113,9 @@ fn tolerance_proportionality() {
     };
     let (e6, e9) = (err(1e-6), err(1e-9));
     let slope = (e6 / e9).log10() / 3.0;
-    assert!(slope > 0.7 && slope < 1.1, "slope {slope}: e6 {e6:e}, e9 {e9:e}");
+    assert!(
+        slope > 0.7 && slope < 1.1,
+        "slope {slope}: e6 {e6:e}, e9 {e9:e}"
+    );
     assert!(e9 < 1e-7);
 }

@@ -108,7 +108,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         if !d.join("summary.parquet").exists() {
             return Err(cfg(format!("{}: no summary.parquet", d.display())));
         }
-        shards.push(Shard { dir: d.clone(), prov });
+        shards.push(Shard {
+            dir: d.clone(),
+            prov,
+        });
     }
     let first = &shards[0].prov.clone();
     let n = first["shard"]["n"].as_u64().unwrap_or(1);
@@ -139,8 +142,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             )));
         }
     }
-    let missing: Vec<String> =
-        (1..=n).filter(|k| !seen.contains_key(k)).map(|k| format!("{k}/{n}")).collect();
+    let missing: Vec<String> = (1..=n)
+        .filter(|k| !seen.contains_key(k))
+        .map(|k| format!("{k}/{n}"))
+        .collect();
     if !missing.is_empty() {
         return Err(cfg(format!("missing shard(s): {}", missing.join(", "))));
     }
@@ -148,7 +153,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     shards.sort_by_key(|s| s.prov["shard"]["k"].as_u64().unwrap_or(0));
 
     let name = first["sweep_name"].as_str().unwrap_or("merged").to_string();
-    let out_dir = opts.out.clone().unwrap_or_else(|| PathBuf::from("runs").join(&name));
+    let out_dir = opts
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("runs").join(&name));
     for s in &shards {
         if same_dir(&s.dir, &out_dir) {
             return Err(cfg(format!(
@@ -169,16 +177,18 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             match &schema {
                 None => schema = Some(b.schema()),
                 Some(sc) if sc.fields() != b.schema().fields() => {
-                    return Err(cfg(format!("{}: columns differ from the other shards", p.display())))
+                    return Err(cfg(format!(
+                        "{}: columns differ from the other shards",
+                        p.display()
+                    )))
                 }
                 _ => {}
             }
         }
         readers.push(it);
     }
-    let Some(schema) = schema.or_else(|| {
-        read_schema(&shards[0].dir.join("summary.parquet"))
-    }) else {
+    let Some(schema) = schema.or_else(|| read_schema(&shards[0].dir.join("summary.parquet")))
+    else {
         return Err(io("summary.parquet", "no schema"));
     };
 
@@ -225,14 +235,22 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         if let Some(b) = &b {
             slots.push(b.clone());
         }
-        cursors.push(Cursor { batch: b, runs, row: 0, slot });
+        cursors.push(Cursor {
+            batch: b,
+            runs,
+            row: 0,
+            slot,
+        });
     }
     let mut picks: Vec<(usize, usize)> = Vec::new();
     let mut last_run: Option<i64> = None;
     let mut count: u64 = 0;
     let mut failed = 0usize;
     const BLOCK: usize = 4096;
-    let mut emit = |slots: &[RecordBatch], picks: &[(usize, usize)], failed: &mut usize| -> Result<(), SweepError> {
+    let mut emit = |slots: &[RecordBatch],
+                    picks: &[(usize, usize)],
+                    failed: &mut usize|
+     -> Result<(), SweepError> {
         if picks.is_empty() {
             return Ok(());
         }
@@ -317,7 +335,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         write_atomic(&out_dir.join("sweep.toml"), &text).map_err(|e| io(out_dir.display(), e))?;
     }
     let mut prov = first.clone();
-    let wall: f64 = shards.iter().filter_map(|s| s.prov["wall_seconds"].as_f64()).sum();
+    let wall: f64 = shards
+        .iter()
+        .filter_map(|s| s.prov["wall_seconds"].as_f64())
+        .sum();
     prov["shard"] = serde_json::json!({ "k": 1, "n": 1 });
     prov["runs_in_output"] = serde_json::json!(count);
     prov["runs_failed"] = serde_json::json!(failed);
@@ -339,13 +360,19 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     prov["merge_seconds"] = serde_json::json!(started.elapsed().as_secs_f64());
     write_atomic(
         &out_dir.join("provenance.json"),
-        serde_json::to_string_pretty(&prov).unwrap_or_default().as_bytes(),
+        serde_json::to_string_pretty(&prov)
+            .unwrap_or_default()
+            .as_bytes(),
     )
     .map_err(|e| io(out_dir.display(), e))?;
     if let Err(e) = crate::report::write_report(&out_dir) {
         eprintln!("cushion merge: warning: report charts not written: {e}");
     }
-    Ok(MergeOutcome { out_dir, runs: count, runs_failed: failed })
+    Ok(MergeOutcome {
+        out_dir,
+        runs: count,
+        runs_failed: failed,
+    })
 }
 
 fn same_dir(a: &Path, b: &Path) -> bool {
@@ -406,8 +433,13 @@ fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
                 if topic_run(&m.channel.topic) != run {
                     break;
                 }
-                let m = streams[i].next().expect("peeked").map_err(|e| io(path.display(), e))?;
-                channels.copy(&mut w, &m).map_err(|e| io(path.display(), e))?;
+                let m = streams[i]
+                    .next()
+                    .expect("peeked")
+                    .map_err(|e| io(path.display(), e))?;
+                channels
+                    .copy(&mut w, &m)
+                    .map_err(|e| io(path.display(), e))?;
             }
         }
         w.finish().map_err(|e| io(path.display(), e))?;

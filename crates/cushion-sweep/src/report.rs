@@ -37,11 +37,13 @@ fn module_color(m: &str) -> RGBColor {
 }
 
 fn f64_col(b: &RecordBatch, name: &str) -> Option<Float64Array> {
-    b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<Float64Array>().cloned())
+    b.column_by_name(name)
+        .and_then(|c| c.as_any().downcast_ref::<Float64Array>().cloned())
 }
 
 fn str_col(b: &RecordBatch, name: &str) -> Option<StringArray> {
-    b.column_by_name(name).and_then(|c| c.as_any().downcast_ref::<StringArray>().cloned())
+    b.column_by_name(name)
+        .and_then(|c| c.as_any().downcast_ref::<StringArray>().cloned())
 }
 
 /// At most this many values per chart are kept for medians and quartiles (a deterministic
@@ -60,7 +62,12 @@ struct AxisScan {
 
 impl AxisScan {
     fn new() -> AxisScan {
-        AxisScan { distinct: Vec::new(), overflow: false, min: f64::INFINITY, max: f64::NEG_INFINITY }
+        AxisScan {
+            distinct: Vec::new(),
+            overflow: false,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+        }
     }
     fn add(&mut self, v: f64, cap: usize) {
         if !v.is_finite() {
@@ -82,7 +89,13 @@ impl AxisScan {
     /// `log`).
     fn grouping(&self, bins: usize, log: bool) -> Grouping {
         if !self.overflow {
-            return Grouping { centres: self.distinct.clone(), exact: true, lo: 0.0, w: 1.0, log };
+            return Grouping {
+                centres: self.distinct.clone(),
+                exact: true,
+                lo: 0.0,
+                w: 1.0,
+                log,
+            };
         }
         let tr = |v: f64| if log { v.ln() } else { v };
         let (lo, hi) = (tr(self.min), tr(self.max));
@@ -90,10 +103,20 @@ impl AxisScan {
         let centres = (0..bins)
             .map(|i| {
                 let c = lo + (i as f64 + 0.5) * w;
-                if log { c.exp() } else { c }
+                if log {
+                    c.exp()
+                } else {
+                    c
+                }
             })
             .collect();
-        Grouping { centres, exact: false, lo, w, log }
+        Grouping {
+            centres,
+            exact: false,
+            lo,
+            w,
+            log,
+        }
     }
 }
 
@@ -128,7 +151,11 @@ struct Acc {
 
 impl Acc {
     fn new() -> Acc {
-        Acc { min: f64::INFINITY, max: f64::NEG_INFINITY, sample: Vec::new() }
+        Acc {
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            sample: Vec::new(),
+        }
     }
     fn add(&mut self, v: f64, keep: bool) {
         if v.is_finite() {
@@ -188,8 +215,21 @@ fn for_each_row(
                 continue;
             }
             let m = module.as_ref().map(|m| m.value(i)).unwrap_or(base_module);
-            let sp = if speed.is_null(i) { f64::NAN } else { speed.value(i).abs() };
-            f(m, [get(&dt, i), get(&gas, i), get(&ori, i), sp, force.value(i).abs()]);
+            let sp = if speed.is_null(i) {
+                f64::NAN
+            } else {
+                speed.value(i).abs()
+            };
+            f(
+                m,
+                [
+                    get(&dt, i),
+                    get(&gas, i),
+                    get(&ori, i),
+                    sp,
+                    force.value(i).abs(),
+                ],
+            );
         }
     }
     Ok((total, has_dt, has_map))
@@ -240,12 +280,32 @@ fn load(dir: &Path) -> Result<Data, String> {
             if let (Some(a), Some(b)) = (gas.index(v[1]), orifice.index(v[2])) {
                 hydraulic_runs += 1;
                 let c = &mut cells[a][b];
-                let mx = |old: f64, new: f64| if old.is_nan() { new } else if new.is_nan() { old } else { old.max(new) };
+                let mx = |old: f64, new: f64| {
+                    if old.is_nan() {
+                        new
+                    } else if new.is_nan() {
+                        old
+                    } else {
+                        old.max(new)
+                    }
+                };
                 *c = (mx(c.0, v[4]), mx(c.1, v[3]));
             }
         }
     })?;
-    Ok(Data { total, ok, modules, has_dt, has_map, dt, sf, gas, orifice, cells, hydraulic_runs })
+    Ok(Data {
+        total,
+        ok,
+        modules,
+        has_dt,
+        has_map,
+        dt,
+        sf,
+        gas,
+        orifice,
+        cells,
+        hydraulic_runs,
+    })
 }
 
 /// Write the report charts that the sweep's axes allow; returns the files written.
@@ -271,7 +331,11 @@ pub fn write_report(dir: &Path) -> Result<Vec<std::path::PathBuf>, String> {
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(|a, b| a.total_cmp(b));
     let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
 }
 
 /// One group on the chart: (x, min, median, max, lower quartile, upper quartile).
@@ -286,7 +350,11 @@ fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
     let title = format!(
         "Object final speed and peak robot force against dead time ({} runs{})",
         d.ok,
-        if left_out > 0 { format!(", {left_out} failed runs left out") } else { String::new() }
+        if left_out > 0 {
+            format!(", {left_out} failed runs left out")
+        } else {
+            String::new()
+        }
     );
     let (top, body) = root.split_vertically(50);
     top.titled(&title, ("sans-serif", 24))?;
@@ -295,13 +363,29 @@ fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
     let modules = &d.modules;
     let several = centres.len() < d.ok / modules.len().max(1);
     for (area, which, ylabel, caption, ydigits) in [
-        (&left, 0usize, "|object final velocity| [m/s]", "Object final speed", 2usize),
-        (&right, 1usize, "|peak robot force| [N]", "Peak robot force", 0usize),
+        (
+            &left,
+            0usize,
+            "|object final velocity| [m/s]",
+            "Object final speed",
+            2usize,
+        ),
+        (
+            &right,
+            1usize,
+            "|peak robot force| [N]",
+            "Peak robot force",
+            0usize,
+        ),
     ] {
         // Per module and group: (x, min, median, max, lower quartile, upper quartile).
         let mut stats: BTreeMap<&str, Vec<GroupStats>> = BTreeMap::new();
         // Modules side by side around each group's dead time, so their bars do not overlap.
-        let gap = if centres.len() > 1 { (centres[1] - centres[0]) * 1e3 } else { 10.0 };
+        let gap = if centres.len() > 1 {
+            (centres[1] - centres[0]) * 1e3
+        } else {
+            10.0
+        };
         let dodge = |k: usize| (k as f64 - (modules.len() as f64 - 1.0) / 2.0) * gap * 0.18;
         for (k, m) in modules.iter().enumerate() {
             let s = d.sf[m]
@@ -336,7 +420,11 @@ fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
         let pad = ((x1 - x0) * 0.05).max(1.0);
         let mut chart = ChartBuilder::on(area)
             .caption(
-                if several { format!("{caption} (median; bars: quartiles, min..max)") } else { caption.to_string() },
+                if several {
+                    format!("{caption} (median; bars: quartiles, min..max)")
+                } else {
+                    caption.to_string()
+                },
                 ("sans-serif", 20),
             )
             .margin(15)
@@ -365,9 +453,14 @@ fn speed_force(path: &Path, d: &Data) -> Draw<std::io::Error> {
                 }))?;
             }
             chart
-                .draw_series(LineSeries::new(s.iter().map(|t| (t.0, t.2)), color.stroke_width(2)))?
+                .draw_series(LineSeries::new(
+                    s.iter().map(|t| (t.0, t.2)),
+                    color.stroke_width(2),
+                ))?
                 .label(m.to_string())
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3)));
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 22, y)], color.stroke_width(3))
+                });
             chart.draw_series(s.iter().map(|t| Circle::new((t.0, t.2), 4, color.filled())))?;
         }
         chart
@@ -414,7 +507,10 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
     let (left, right) = body.split_horizontally(650);
     // Cell edges in plot coordinates: log10(pressure) and radius in mm.
     let edges = |c: &[f64], log: bool| -> Vec<f64> {
-        let t: Vec<f64> = c.iter().map(|v| if log { v.log10() } else { v * 1e3 }).collect();
+        let t: Vec<f64> = c
+            .iter()
+            .map(|v| if log { v.log10() } else { v * 1e3 })
+            .collect();
         if t.len() == 1 {
             return vec![t[0] - 0.5, t[0] + 0.5];
         }
@@ -434,9 +530,18 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
         let cell: Vec<Vec<f64>> = d
             .cells
             .iter()
-            .map(|col| col.iter().map(|c| if which == 0 { c.0 } else { c.1 }).collect())
+            .map(|col| {
+                col.iter()
+                    .map(|c| if which == 0 { c.0 } else { c.1 })
+                    .collect()
+            })
             .collect();
-        let vals: Vec<f64> = cell.iter().flatten().copied().filter(|v| v.is_finite()).collect();
+        let vals: Vec<f64> = cell
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|v| v.is_finite())
+            .collect();
         let lo = vals.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = vals.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let span = if hi > lo { hi - lo } else { 1.0 };
@@ -454,7 +559,11 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
             .y_desc("orifice radius [mm]")
             .x_label_formatter(&|v| {
                 let p = 10f64.powf(*v);
-                if p >= 1e3 { format!("{:.0}k", p / 1e3) } else { format!("{p:.0}") }
+                if p >= 1e3 {
+                    format!("{:.0}k", p / 1e3)
+                } else {
+                    format!("{p:.0}")
+                }
             })
             .y_label_formatter(&|v| format!("{v:.1}"))
             .label_style(("sans-serif", 14))
@@ -464,7 +573,11 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
         for a in 0..gc.len() {
             for b in 0..oc.len() {
                 let v = cell[a][b];
-                let color = if v.is_finite() { viridis((v - lo) / span) } else { RGBColor(225, 225, 225) };
+                let color = if v.is_finite() {
+                    viridis((v - lo) / span)
+                } else {
+                    RGBColor(225, 225, 225)
+                };
                 chart.draw_series(std::iter::once(Rectangle::new(
                     [(gx[a], oy[b]), (gx[a + 1], oy[b + 1])],
                     color.filled(),
@@ -474,7 +587,10 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
                     let tc = if u > 0.6 { BLACK } else { WHITE };
                     chart.draw_series(std::iter::once(Text::new(
                         format!("{v:.3}"),
-                        ((gx[a] + gx[a + 1]) / 2.0 - (gx[a + 1] - gx[a]) * 0.3, (oy[b] + oy[b + 1]) / 2.0),
+                        (
+                            (gx[a] + gx[a + 1]) / 2.0 - (gx[a + 1] - gx[a]) * 0.3,
+                            (oy[b] + oy[b + 1]) / 2.0,
+                        ),
                         ("sans-serif", 12).into_font().color(&tc),
                     )))?;
                 }
@@ -490,7 +606,15 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
             .margin_right(5)
             .y_label_area_size(50)
             .build_cartesian_2d(0.0..1.0, lo..(lo + span))?;
-        let digits = if span >= 20.0 { 0 } else if span >= 2.0 { 1 } else if span >= 0.2 { 2 } else { 3 };
+        let digits = if span >= 20.0 {
+            0
+        } else if span >= 2.0 {
+            1
+        } else if span >= 0.2 {
+            2
+        } else {
+            3
+        };
         cb.configure_mesh()
             .disable_mesh()
             .disable_x_axis()
@@ -501,7 +625,10 @@ fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
         cb.draw_series((0..steps).map(|k| {
             let a = lo + span * k as f64 / steps as f64;
             let b = lo + span * (k + 1) as f64 / steps as f64;
-            Rectangle::new([(0.0, a), (1.0, b)], viridis(k as f64 / (steps - 1) as f64).filled())
+            Rectangle::new(
+                [(0.0, a), (1.0, b)],
+                viridis(k as f64 / (steps - 1) as f64).filled(),
+            )
         }))?;
     }
     root.present()?;

@@ -162,7 +162,9 @@ pub fn run_sweep_with(
     let threads = match opts.threads {
         Some(0) => return Err(SweepError::Config("--threads must be at least 1".into())),
         Some(n) => n,
-        None => std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1),
+        None => std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1),
     };
     let shard = opts.shard.unwrap_or((1, 1));
     if shard.1 == 0 || shard.0 == 0 || shard.0 > shard.1 {
@@ -182,14 +184,19 @@ pub fn run_sweep_with(
     let timing = std::env::var_os("CUSHION_SWEEP_TIMING").is_some();
     let phase = |what: &str, since: Instant| {
         if timing {
-            eprintln!("cushion sweep: {what}: {:.3} s", since.elapsed().as_secs_f64());
+            eprintln!(
+                "cushion sweep: {what}: {:.3} s",
+                since.elapsed().as_secs_f64()
+            );
         }
     };
     let t_phase = Instant::now();
     let first_bad = pool.install(|| {
         (0..n_runs).into_par_iter().find_map_first(|run| {
             let point = design.point(run);
-            let checked = design.scene(&sweep.base, &point).and_then(|s| s.validate().map_err(|e| e.to_string()));
+            let checked = design
+                .scene(&sweep.base, &point)
+                .and_then(|s| s.validate().map_err(|e| e.to_string()));
             match checked {
                 Ok(()) => None,
                 Err(e) => Some((run, point, e)),
@@ -280,9 +287,14 @@ pub fn run_sweep_with(
     let chunk = sweep.chunk_size as u64;
     let n_chunks = m.div_ceil(chunk);
     let chunk_path = |c: u64, ext: &str| state_dir.join(format!("chunk-{c:08}.{ext}"));
-    let todo: Vec<u64> = (0..n_chunks).filter(|c| !chunk_path(*c, "parquet").exists()).collect();
+    let todo: Vec<u64> = (0..n_chunks)
+        .filter(|c| !chunk_path(*c, "parquet").exists())
+        .collect();
     let runs_in = |c: u64| (c * chunk)..((c + 1) * chunk).min(m);
-    let runs_todo: u64 = todo.iter().map(|c| runs_in(*c).end - runs_in(*c).start).sum();
+    let runs_todo: u64 = todo
+        .iter()
+        .map(|c| runs_in(*c).end - runs_in(*c).start)
+        .sum();
 
     let progress = if !opts.quiet && std::io::stderr().is_terminal() {
         let pb = indicatif::ProgressBar::new(m);
@@ -291,9 +303,12 @@ pub fn run_sweep_with(
                 "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {rate}  ETA {eta}",
             )
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-            .with_key("rate", |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
-                let _ = write!(w, "{:.0} runs/s", s.per_sec());
-            }),
+            .with_key(
+                "rate",
+                |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                    let _ = write!(w, "{:.0} runs/s", s.per_sec());
+                },
+            ),
         );
         pb.set_position(m - runs_todo);
         pb.reset_eta();
@@ -315,7 +330,12 @@ pub fn run_sweep_with(
             let mut write_seconds = 0.0;
             for (c, results) in from_runner {
                 let t_write = Instant::now();
-                write_chunk(&chunk_path(c, "mcap"), &chunk_path(c, "parquet"), &schema, &results)?;
+                write_chunk(
+                    &chunk_path(c, "mcap"),
+                    &chunk_path(c, "parquet"),
+                    &schema,
+                    &results,
+                )?;
                 write_seconds += t_write.elapsed().as_secs_f64();
                 let done = chunks_done_now.fetch_add(1, Ordering::SeqCst) + 1;
                 if abort_after == Some(done) {
@@ -356,7 +376,9 @@ pub fn run_sweep_with(
             }
         }
         drop(to_writer);
-        writer.join().unwrap_or_else(|_| Err(SweepError::Io("the chunk writer thread panicked".into())))
+        writer
+            .join()
+            .unwrap_or_else(|_| Err(SweepError::Io("the chunk writer thread panicked".into())))
     })?;
     if let Some(pb) = &progress {
         pb.finish_and_clear();
@@ -372,10 +394,23 @@ pub fn run_sweep_with(
     write_atomic(&out_dir.join("sweep.toml"), sweep.text.as_bytes())
         .map_err(|e| io_err(out_dir.display(), e))?;
     let wall = started.elapsed().as_secs_f64();
-    let provenance = provenance(&sweep, &digest, n_runs, shard, m, failed, runs_todo, opts.resume, threads, wall);
+    let provenance = provenance(
+        &sweep,
+        &digest,
+        n_runs,
+        shard,
+        m,
+        failed,
+        runs_todo,
+        opts.resume,
+        threads,
+        wall,
+    );
     write_atomic(
         &out_dir.join("provenance.json"),
-        serde_json::to_string_pretty(&provenance).unwrap_or_default().as_bytes(),
+        serde_json::to_string_pretty(&provenance)
+            .unwrap_or_default()
+            .as_bytes(),
     )
     .map_err(|e| io_err(out_dir.display(), e))?;
     phase("final files", t_phase);
@@ -409,8 +444,10 @@ fn write_chunk(
     schema: &TableSchema,
     results: &[(u64, Vec<Value>, RunResult)],
 ) -> Result<(), SweepError> {
-    let recorded: Vec<&(u64, Vec<Value>, RunResult)> =
-        results.iter().filter(|r| r.2.trajectory.is_some()).collect();
+    let recorded: Vec<&(u64, Vec<Value>, RunResult)> = results
+        .iter()
+        .filter(|r| r.2.trajectory.is_some())
+        .collect();
     if !recorded.is_empty() {
         let path = mcap_path;
         let mut f = AtomicFile::create(path).map_err(|e| io_err(path.display(), e))?;
@@ -420,8 +457,13 @@ fn write_chunk(
                 .map_err(|e| io_err(path.display(), e))?;
             for (run, _, r) in &recorded {
                 if let Some(traj) = r.trajectory.as_ref() {
-                    crate::trajectory_mcap::write_run(&mut w, &format!("/run/{run}"), traj, &r.events)
-                        .map_err(|e| io_err(path.display(), e))?;
+                    crate::trajectory_mcap::write_run(
+                        &mut w,
+                        &format!("/run/{run}"),
+                        traj,
+                        &r.events,
+                    )
+                    .map_err(|e| io_err(path.display(), e))?;
                 }
             }
             w.finish().map_err(|e| io_err(path.display(), e))?;
@@ -437,7 +479,11 @@ fn write_chunk(
 }
 
 fn invalid(message: String) -> RunResult {
-    RunResult { summary: Summary::invalid(message), trajectory: None, events: Vec::new() }
+    RunResult {
+        summary: Summary::invalid(message),
+        trajectory: None,
+        events: Vec::new(),
+    }
 }
 
 /// One run; a panic in the model becomes a row with status `invalid` (the sweep goes on).
@@ -461,10 +507,15 @@ fn run_guarded(
 
 /// Temporary files of our outputs left by a process killed while writing them.
 fn remove_stale_temps(out_dir: &Path) {
-    let Ok(entries) = fs::read_dir(out_dir) else { return };
+    let Ok(entries) = fs::read_dir(out_dir) else {
+        return;
+    };
     for e in entries.flatten() {
         let name = e.file_name().to_string_lossy().into_owned();
-        if OUTPUT_FILES.iter().any(|f| name.starts_with(&format!(".{f}.tmp-"))) {
+        if OUTPUT_FILES
+            .iter()
+            .any(|f| name.starts_with(&format!(".{f}.tmp-")))
+        {
             let _ = fs::remove_file(e.path());
         }
     }
@@ -485,8 +536,12 @@ fn count_chunks(state_dir: &Path) -> usize {
 
 /// A finished sweep of the same digest and shard is in `out_dir`.
 fn finished_same(out_dir: &Path, digest: &str, shard: (usize, usize)) -> bool {
-    let Ok(bytes) = fs::read(out_dir.join("provenance.json")) else { return false };
-    let Ok(p) = serde_json::from_slice::<serde_json::Value>(&bytes) else { return false };
+    let Ok(bytes) = fs::read(out_dir.join("provenance.json")) else {
+        return false;
+    };
+    let Ok(p) = serde_json::from_slice::<serde_json::Value>(&bytes) else {
+        return false;
+    };
     out_dir.join("summary.parquet").exists()
         && p["sweep_digest"] == digest
         && p["shard"]["k"] == shard.0
@@ -523,8 +578,12 @@ pub fn read_parquet(
 }
 
 pub fn count_failed_batch(batch: &arrow_array::RecordBatch) -> usize {
-    let Some(col) = batch.column_by_name("status") else { return 0 };
-    let Some(a) = col.as_any().downcast_ref::<arrow_array::StringArray>() else { return 0 };
+    let Some(col) = batch.column_by_name("status") else {
+        return 0;
+    };
+    let Some(a) = col.as_any().downcast_ref::<arrow_array::StringArray>() else {
+        return 0;
+    };
     a.iter().filter(|s| *s != Some("ok")).count()
 }
 
@@ -556,7 +615,8 @@ fn assemble(
     let csv_path = out_dir.join("summary.csv");
     let write_csv = || -> Result<(usize, AtomicFile), SweepError> {
         let mut csv = AtomicFile::create(&csv_path).map_err(|e| io_err(csv_path.display(), e))?;
-        writeln!(csv.writer(), "{}", schema.csv_header()).map_err(|e| io_err(csv_path.display(), e))?;
+        writeln!(csv.writer(), "{}", schema.csv_header())
+            .map_err(|e| io_err(csv_path.display(), e))?;
         let mut failed = 0usize;
         for b in batches() {
             let b = b?;
@@ -571,7 +631,8 @@ fn assemble(
         (pq, h.join())
     });
     pq?;
-    let (failed, csv) = csv.map_err(|_| SweepError::Io("summary.csv: writer thread panicked".into()))??;
+    let (failed, csv) =
+        csv.map_err(|_| SweepError::Io("summary.csv: writer thread panicked".into()))??;
     csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
 
     // Only when a run of this output was recorded (a shard may hold none of the listed runs).
@@ -589,10 +650,13 @@ fn assemble(
                     continue;
                 }
                 let bytes = fs::read(&p).map_err(|e| io_err(p.display(), e))?;
-                let stream = mcap::MessageStream::new(&bytes).map_err(|e| io_err(p.display(), e))?;
+                let stream =
+                    mcap::MessageStream::new(&bytes).map_err(|e| io_err(p.display(), e))?;
                 for m in stream {
                     let m = m.map_err(|e| io_err(p.display(), e))?;
-                    channels.copy(&mut w, &m).map_err(|e| io_err(path.display(), e))?;
+                    channels
+                        .copy(&mut w, &m)
+                        .map_err(|e| io_err(path.display(), e))?;
                 }
             }
             w.finish().map_err(|e| io_err(path.display(), e))?;

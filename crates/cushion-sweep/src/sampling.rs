@@ -52,7 +52,13 @@ impl Design {
                 strata.push(perm);
             }
         }
-        Ok(Design { mode: sweep.mode, axes: sweep.axes.clone(), n_runs, seed: sweep.seed, strata })
+        Ok(Design {
+            mode: sweep.mode,
+            axes: sweep.axes.clone(),
+            n_runs,
+            seed: sweep.seed,
+            strata,
+        })
     }
 
     pub fn n_runs(&self) -> u64 {
@@ -88,7 +94,9 @@ impl Design {
                 let mut rest = run;
                 let mut out = vec![Value::Boolean(false); self.axes.len()];
                 for (d, a) in self.axes.iter().enumerate().rev() {
-                    let AxisValues::List(vals) = &a.values else { unreachable!() };
+                    let AxisValues::List(vals) = &a.values else {
+                        unreachable!()
+                    };
                     let k = vals.len() as u64;
                     out[d] = vals[(rest % k) as usize].clone();
                     rest /= k;
@@ -99,7 +107,9 @@ impl Design {
                 .axes
                 .iter()
                 .map(|a| {
-                    let AxisValues::List(vals) = &a.values else { unreachable!() };
+                    let AxisValues::List(vals) = &a.values else {
+                        unreachable!()
+                    };
                     vals[run as usize].clone()
                 })
                 .collect(),

@@ -77,12 +77,20 @@ impl TableSchema {
             .iter()
             .map(|(n, t)| Field::new(n, t.data_type(), *n != "run"))
             .collect();
-        TableSchema { columns, arrow: Arc::new(Schema::new(fields)), n_axes: axes.len() }
+        TableSchema {
+            columns,
+            arrow: Arc::new(Schema::new(fields)),
+            n_axes: axes.len(),
+        }
     }
 
     /// The column names, comma-separated (the CSV header, without newline).
     pub fn csv_header(&self) -> String {
-        self.columns.iter().map(|(n, _)| csv_text(n)).collect::<Vec<_>>().join(",")
+        self.columns
+            .iter()
+            .map(|(n, _)| csv_text(n))
+            .collect::<Vec<_>>()
+            .join(",")
     }
 
     /// Index of a column by name.
@@ -137,7 +145,11 @@ impl RowsBuilder {
                 ColType::Text => ColBuilder::Text(StringBuilder::new()),
             })
             .collect();
-        RowsBuilder { schema: schema.clone(), cols, rows: 0 }
+        RowsBuilder {
+            schema: schema.clone(),
+            cols,
+            rows: 0,
+        }
     }
 
     /// One run's row: its number, its axis values, its summary.
@@ -274,6 +286,9 @@ mod tests {
         let mut out = Vec::new();
         write_csv_rows(&mut out, &batch).unwrap();
         let line = String::from_utf8(out).unwrap();
-        assert!(line.starts_with("3,invalid,\"bad, \"\"very\"\"\",,,0.0,"), "{line}");
+        assert!(
+            line.starts_with("3,invalid,\"bad, \"\"very\"\"\",,,0.0,"),
+            "{line}"
+        );
     }
 }

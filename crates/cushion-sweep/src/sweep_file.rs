@@ -181,7 +181,11 @@ fn check_keys(table: &toml::Table, allowed: &[&str], where_: &str) -> Result<(),
 /// Flatten `{solver = {rtol = 1e-6}}` (unquoted dotted keys) into `solver.rtol`.
 fn flatten(prefix: &str, t: &toml::Table, out: &mut Vec<(String, Value)>) {
     for (k, v) in t {
-        let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
         match v {
             Value::Table(inner) => flatten(&key, inner, out),
             _ => out.push((key, v.clone())),
@@ -201,16 +205,26 @@ fn spaced(key: &str, form: &str, v: &Value) -> Result<(f64, f64, usize), String>
         .ok_or_else(|| format!("{key}: `{form}` stop must be a number, got {}", arr[1]))?;
     let n = match &arr[2] {
         Value::Integer(n) => *n,
-        other => return Err(format!("{key}: `{form}` n must be an integer >= 1, got {other}")),
+        other => {
+            return Err(format!(
+                "{key}: `{form}` n must be an integer >= 1, got {other}"
+            ))
+        }
     };
     if n < 1 {
-        return Err(format!("{key}: `{form}` n must be an integer >= 1, got {n}"));
+        return Err(format!(
+            "{key}: `{form}` n must be an integer >= 1, got {n}"
+        ));
     }
     if n as u64 > MAX_RUNS {
-        return Err(format!("{key}: `{form}` n = {n} is too large (at most {MAX_RUNS})"));
+        return Err(format!(
+            "{key}: `{form}` n = {n} is too large (at most {MAX_RUNS})"
+        ));
     }
     if !start.is_finite() || !stop.is_finite() {
-        return Err(format!("{key}: `{form}` start and stop must be finite, got {v}"));
+        return Err(format!(
+            "{key}: `{form}` start and stop must be finite, got {v}"
+        ));
     }
     Ok((start, stop, n as usize))
 }
@@ -237,7 +251,15 @@ pub fn logspace(start: f64, stop: f64, n: usize) -> Vec<f64> {
     linspace(a, b, n)
         .into_iter()
         .enumerate()
-        .map(|(i, x)| if i == 0 { start } else if i == n - 1 { stop } else { x.exp() })
+        .map(|(i, x)| {
+            if i == 0 {
+                start
+            } else if i == n - 1 {
+                stop
+            } else {
+                x.exp()
+            }
+        })
         .collect()
 }
 
@@ -248,7 +270,10 @@ fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
     let key = match t.get("key") {
         Some(Value::String(k)) => k.clone(),
         Some(other) => {
-            return Err(format!("[[axis]] #{}: `key` must be a string, got {other}", i + 1))
+            return Err(format!(
+                "[[axis]] #{}: `key` must be a string, got {other}",
+                i + 1
+            ))
         }
         None => return Err(format!("[[axis]] #{}: missing `key`", i + 1)),
     };
@@ -271,7 +296,11 @@ fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
     if forms.len() != 1 {
         return Err(format!(
             "{label}: give exactly one of `values`, `linspace`, `logspace`, `range` (found {})",
-            if forms.is_empty() { "none".to_string() } else { forms.join(", ") }
+            if forms.is_empty() {
+                "none".to_string()
+            } else {
+                forms.join(", ")
+            }
         ));
     }
     let form = forms[0];
@@ -315,7 +344,11 @@ fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
                 .ok_or_else(|| format!("{label}: `range` must be [low, high], got {r}"))?;
             let (low, high) = match (as_number(&arr[0]), as_number(&arr[1])) {
                 (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a, b),
-                _ => return Err(format!("{label}: `range` must be two finite numbers, got {r}")),
+                _ => {
+                    return Err(format!(
+                        "{label}: `range` must be two finite numbers, got {r}"
+                    ))
+                }
             };
             if low > high {
                 return Err(format!("{label}: `range` low {low} is above high {high}"));
@@ -331,7 +364,9 @@ fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
                 }
             };
             if log && low <= 0.0 {
-                return Err(format!("{label}: `scale = \"log\"` needs low > 0, got {low}"));
+                return Err(format!(
+                    "{label}: `scale = \"log\"` needs low > 0, got {low}"
+                ));
             }
             AxisValues::Range { low, high, log }
         }
@@ -346,7 +381,10 @@ fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
                 _ => None,
             };
             let first = kind_of(&vals[0]).ok_or_else(|| {
-                format!("{label}: values must be numbers, strings or booleans, got {}", type_name(&vals[0]))
+                format!(
+                    "{label}: values must be numbers, strings or booleans, got {}",
+                    type_name(&vals[0])
+                )
             })?;
             for v in vals {
                 if kind_of(v) != Some(first) {
@@ -389,7 +427,11 @@ impl SweepFile {
                 None => format!("TOML syntax error: {msg}"),
             }
         })?;
-        check_keys(&doc, &["name", "scene", "set", "sampling", "axis", "output"], "the sweep file")?;
+        check_keys(
+            &doc,
+            &["name", "scene", "set", "sampling", "axis", "output"],
+            "the sweep file",
+        )?;
 
         let name = match doc.get("name") {
             None => path
@@ -479,7 +521,9 @@ impl SweepFile {
             ));
         }
         if samples > MAX_RUNS {
-            return Err(format!("[sampling] samples = {samples}: at most {MAX_RUNS}"));
+            return Err(format!(
+                "[sampling] samples = {samples}: at most {MAX_RUNS}"
+            ));
         }
         let seed = match (sampling.get("seed"), random) {
             (None, _) => 0,
@@ -514,7 +558,11 @@ impl SweepFile {
         let mut seen = BTreeSet::new();
         for (i, a) in axes.iter().enumerate() {
             if !seen.insert(a.key.clone()) {
-                return Err(format!("[[axis]] #{} (`{}`): the key has another axis already", i + 1, a.key));
+                return Err(format!(
+                    "[[axis]] #{} (`{}`): the key has another axis already",
+                    i + 1,
+                    a.key
+                ));
             }
             if set.iter().any(|(k, _)| k == &a.key) {
                 return Err(format!(
@@ -542,7 +590,10 @@ impl SweepFile {
             }
         }
         if mode == Mode::Sobol && axes.len() as u32 > sobol_burley::NUM_DIMENSIONS {
-            return Err(format!("sobol takes at most {} axes", sobol_burley::NUM_DIMENSIONS));
+            return Err(format!(
+                "sobol takes at most {} axes",
+                sobol_burley::NUM_DIMENSIONS
+            ));
         }
 
         // [output]
@@ -551,19 +602,30 @@ impl SweepFile {
             Some(Value::Table(t)) => t,
             Some(_) => return Err("`output` must be a table [output]".to_string()),
         };
-        check_keys(output, &["record", "chunk_size", "invalid_runs", "sample_interval"], "[output]")?;
+        check_keys(
+            output,
+            &["record", "chunk_size", "invalid_runs", "sample_interval"],
+            "[output]",
+        )?;
         let sample_interval = match output.get("sample_interval") {
             None => None,
             Some(v) => match as_number(v) {
                 Some(x) if x > 0.0 && x.is_finite() => Some(x),
-                _ => return Err(format!("[output] sample_interval = {v}: must be a number > 0 (seconds)")),
+                _ => {
+                    return Err(format!(
+                        "[output] sample_interval = {v}: must be a number > 0 (seconds)"
+                    ))
+                }
             },
         };
         let chunk_size = match output.get("chunk_size") {
             None => DEFAULT_CHUNK_SIZE,
             Some(Value::Integer(n)) if *n >= 1 && *n <= 1 << 20 => *n as usize,
             Some(other) => {
-                return Err(format!("[output] chunk_size = {other}: must be an integer from 1 to {}", 1 << 20))
+                return Err(format!(
+                    "[output] chunk_size = {other}: must be an integer from 1 to {}",
+                    1 << 20
+                ))
             }
         };
         let invalid_runs = match output.get("invalid_runs") {
@@ -571,7 +633,9 @@ impl SweepFile {
             Some(Value::String(s)) if s == "fail" => InvalidRuns::Fail,
             Some(Value::String(s)) if s == "row" => InvalidRuns::Row,
             Some(other) => {
-                return Err(format!("[output] invalid_runs = {other}: allowed \"fail\" or \"row\""))
+                return Err(format!(
+                    "[output] invalid_runs = {other}: allowed \"fail\" or \"row\""
+                ))
             }
         };
 
@@ -627,9 +691,12 @@ impl SweepFile {
             Mode::Grid => {
                 let mut n: u64 = 1;
                 for a in &self.axes {
-                    n = n.checked_mul(list_len(a) as u64).filter(|n| *n <= MAX_RUNS).ok_or_else(
-                        || format!("the grid has more than {MAX_RUNS} runs; use lhs or sobol"),
-                    )?;
+                    n = n
+                        .checked_mul(list_len(a) as u64)
+                        .filter(|n| *n <= MAX_RUNS)
+                        .ok_or_else(|| {
+                            format!("the grid has more than {MAX_RUNS} runs; use lhs or sobol")
+                        })?;
                 }
                 Ok(n)
             }

@@ -43,7 +43,13 @@ fn a_panicking_run_is_a_row_and_the_rest_run() {
     let f = write_sweep(dir.path(), BODY);
     let out = dir.path().join("o");
     let o = run_sweep_with(
-        &SweepOptions { file: f, out: Some(out.clone()), threads: Some(2), quiet: true, ..Default::default() },
+        &SweepOptions {
+            file: f,
+            out: Some(out.clone()),
+            threads: Some(2),
+            quiet: true,
+            ..Default::default()
+        },
         &flaky,
     )
     .unwrap();
@@ -51,7 +57,9 @@ fn a_panicking_run_is_a_row_and_the_rest_run() {
     assert_eq!(o.runs_failed, 1);
     let csv = fs::read_to_string(out.join("summary.csv")).unwrap();
     let row7 = csv.lines().nth(1 + 7).unwrap();
-    let dt3 = cushion_sweep::summary_table::csv_float(cushion_sweep::sweep_file::linspace(0.0, 0.09, 10)[3]);
+    let dt3 = cushion_sweep::summary_table::csv_float(
+        cushion_sweep::sweep_file::linspace(0.0, 0.09, 10)[3],
+    );
     let want = format!("7,{dt3},0.5,invalid,internal error: the model panicked: boom");
     assert!(row7.starts_with(&want), "{row7} vs {want}");
     assert_eq!(csv.lines().filter(|l| l.contains(",ok,")).count(), 19);
@@ -67,13 +75,23 @@ fn rows_in_run_order_for_any_thread_count_and_shards_partition() {
         std::thread::sleep(std::time::Duration::from_micros(((0.1 - dt) * 2e4) as u64));
         let mut s = Summary::invalid("");
         s.peak_robot_force = dt * 1000.0;
-        RunResult { summary: s, trajectory: None, events: Vec::new() }
+        RunResult {
+            summary: s,
+            trajectory: None,
+            events: Vec::new(),
+        }
     };
     let mut outs = Vec::new();
     for t in [1, 2, 3] {
         let out = dir.path().join(format!("t{t}"));
         run_sweep_with(
-            &SweepOptions { file: f.clone(), out: Some(out.clone()), threads: Some(t), quiet: true, ..Default::default() },
+            &SweepOptions {
+                file: f.clone(),
+                out: Some(out.clone()),
+                threads: Some(t),
+                quiet: true,
+                ..Default::default()
+            },
             &fake,
         )
         .unwrap();
@@ -85,7 +103,13 @@ fn rows_in_run_order_for_any_thread_count_and_shards_partition() {
     for k in 1..=4 {
         let out = dir.path().join(format!("s{k}"));
         let o = run_sweep_with(
-            &SweepOptions { file: f.clone(), out: Some(out.clone()), shard: Some((k, 4)), quiet: true, ..Default::default() },
+            &SweepOptions {
+                file: f.clone(),
+                out: Some(out.clone()),
+                shard: Some((k, 4)),
+                quiet: true,
+                ..Default::default()
+            },
             &fake,
         )
         .unwrap();
@@ -105,14 +129,26 @@ fn final_files_do_not_depend_on_the_chunk_size() {
     for chunk in [1, 3, 7, 256] {
         let sub = dir.path().join(format!("c{chunk}"));
         fs::create_dir_all(&sub).unwrap();
-        let f = write_sweep(&sub, &BODY.replace("chunk_size = 3", &format!("chunk_size = {chunk}")));
+        let f = write_sweep(
+            &sub,
+            &BODY.replace("chunk_size = 3", &format!("chunk_size = {chunk}")),
+        );
         let out = sub.join("o");
         run_sweep_with(
-            &SweepOptions { file: f, out: Some(out.clone()), threads: Some(2), quiet: true, ..Default::default() },
+            &SweepOptions {
+                file: f,
+                out: Some(out.clone()),
+                threads: Some(2),
+                quiet: true,
+                ..Default::default()
+            },
             &simulate,
         )
         .unwrap();
-        files.push((fs::read(out.join("summary.csv")).unwrap(), fs::read(out.join("summary.parquet")).unwrap()));
+        files.push((
+            fs::read(out.join("summary.csv")).unwrap(),
+            fs::read(out.join("summary.parquet")).unwrap(),
+        ));
     }
     for f in &files[1..] {
         assert!(f.0 == files[0].0 && f.1 == files[0].1);

@@ -41,7 +41,13 @@ impl OdeSystem<2> for BouncingBall {
     fn event_direction(&self, _i: usize) -> Direction {
         Direction::Falling
     }
-    fn on_event(&mut self, _i: usize, _t: f64, y: &mut State<2>, _ctl: &mut Control) -> EventAction {
+    fn on_event(
+        &mut self,
+        _i: usize,
+        _t: f64,
+        y: &mut State<2>,
+        _ctl: &mut Control,
+    ) -> EventAction {
         self.bounces += 1;
         y[0] = 0.0;
         y[1] = -self.restitution * y[1];

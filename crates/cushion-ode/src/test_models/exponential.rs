@@ -9,7 +9,10 @@ pub struct Exponential {
 
 impl Exponential {
     pub fn exact(&self, t: f64, y0: &State<2>) -> State<2> {
-        State::<2>::new(y0[0] * (self.lambda[0] * t).exp(), y0[1] * (self.lambda[1] * t).exp())
+        State::<2>::new(
+            y0[0] * (self.lambda[0] * t).exp(),
+            y0[1] * (self.lambda[1] * t).exp(),
+        )
     }
 }
 
