@@ -945,17 +945,18 @@ impl Model {
         };
         let e1 = self.eval_inline(t1, y1, &seg, &r);
         consider(K, &e1);
-        // The interior is sampled only where a new peak is possible: near or above the peaks so
-        // far, where the stroke turns, and around events; elsewhere the step's end suffices.
+        // The interior is sampled only where a new peak is possible: near or above the force
+        // peaks so far, where the stroke turns (its largest value lies in a step where `sd`
+        // changes sign; while it rises, the step's end is its largest), and around events;
+        // elsewhere the step's end suffices.
         let m = &self.metrics;
         let interior = match self.last_sample {
             None => true,
-            Some((fr0, fc0, s0, sd0)) => {
+            Some((fr0, fc0, _, sd0)) => {
                 self.force_sample > 0
                     || fr0.abs().max(e1.f_r.abs()) > 0.5 * m.peak_fr.abs()
                     || fc0.max(e1.f_c) > 0.5 * m.peak_fc
                     || (sd0 > 0.0 && e1.sd <= 0.0)
-                    || s0.max(e1.s) >= m.max_stroke
             }
         };
         // The nodes are computed at most once per step: for the interior samples, or for a new
