@@ -198,13 +198,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
 
     fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64> {
         // Two evaluations at t + h: f(stage 6 input) and f(y1) (Hairer, DOPRI5).
-        let num = (f1 - self.k[4]).norm_squared();
-        let den = (y1 - self.stage6_input).norm_squared();
-        if den > 0.0 {
-            Some(h.abs() * (num / den).sqrt())
-        } else {
-            None
-        }
+        crate::stiffness::h_lambda(h, y1, f1, &self.stage6_input, &self.k[4])
     }
 }
 

@@ -152,12 +152,6 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
         }
         // Two evaluations at t + h: f(last stage input) and f(y1) (Hairer, DOPRI5).
         let s = self.tab.c.len();
-        let num = (f1 - self.k[s - 1]).norm_squared();
-        let den = (y1 - self.last_stage_input).norm_squared();
-        if den > 0.0 {
-            Some(h.abs() * (num / den).sqrt())
-        } else {
-            None
-        }
+        crate::stiffness::h_lambda(h, y1, f1, &self.last_stage_input, &self.k[s - 1])
     }
 }

@@ -1,6 +1,26 @@
 //! Hairer's stiffness test for DOPRI5: `h * |lambda|` estimated from two evaluations at
 //! `t + h`; 15 steps in a row above 3.25 mean stiff; 6 non-stiff steps reset the count.
 
+use crate::State;
+
+/// Hairer's estimate `h |lambda| = h ||f(y1) - f(z)|| / ||y1 - z||` from the step's end `y1`
+/// and the last stage's input `z`, both at `t + h`; `None` when they coincide.
+pub fn h_lambda<const N: usize>(
+    h: f64,
+    y1: &State<N>,
+    f1: &State<N>,
+    z: &State<N>,
+    fz: &State<N>,
+) -> Option<f64> {
+    let num = (f1 - fz).norm_squared();
+    let den = (y1 - z).norm_squared();
+    if den > 0.0 {
+        Some(h.abs() * (num / den).sqrt())
+    } else {
+        None
+    }
+}
+
 /// The test's running state.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct StiffnessDetector {
