@@ -293,7 +293,8 @@ pub struct Model {
     pub(crate) t_end: f64,
     settle_v: f64,
     settle_a: f64,
-    pub(crate) y0: Vec<f64>,
+    /// The initial state (the preload equilibrium), in the order of `layout`.
+    pub y0: Vec<f64>,
 }
 
 impl Model {
@@ -687,6 +688,30 @@ impl Model {
             }
             EV_CAVITATION => self.cavitation_margin(x_r - x_t, v_r - v_t),
             _ => 1.0,
+        }
+    }
+
+    /// How far event function `kind` can stray from its chord over a step of length `h` (s)
+    /// whose states stray at most `dev` from theirs (`OdeSystem::event_chord_bound`). The
+    /// position and speed events are affine in the state plus the robot's position (a
+    /// quadratic in `t` within a step: steps never cross its kinks, which are time stops;
+    /// it strays `|a_r| h^2 / 8`) or speed (linear: 0). The stuck friction and cavitation
+    /// functions are not affine: `None`.
+    fn event_straying(&self, kind: u8, h: f64, dev: &[f64]) -> Option<f64> {
+        let r = &self.regime;
+        let robot_x = self.robot.current().a.abs() * h * h * 0.125;
+        let (tool_x, tool_v) = match self.layout.tool {
+            Some(i) => (dev[i], dev[i + 1]),
+            None => (robot_x, 0.0),
+        };
+        let object = |k: usize| self.layout.object.map_or(0.0, |j| dev[j + k]);
+        match kind {
+            EV_SENSOR if r.detected => Some(0.0),
+            EV_SENSOR | EV_FWD | EV_BACK => Some(tool_x + robot_x),
+            EV_OBJECT => Some(tool_x + object(0)),
+            EV_TOOL_STICK if !r.tool_stuck => Some(tool_v),
+            EV_OBJ_STICK if !r.obj_stuck => Some(object(1)),
+            _ => None,
         }
     }
 
@@ -1181,6 +1206,11 @@ impl<const N: usize> OdeSystem<N> for Model {
         for (gi, &kind) in g.iter_mut().zip(&self.events[..self.n_events]) {
             *gi = self.event_value(kind, t, y, &k);
         }
+    }
+
+    fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
+        let kind = *self.events.get(i)?;
+        self.event_straying(kind, t1 - t0, dev.as_slice())
     }
 
     fn event_direction(&self, i: usize) -> Direction {

@@ -50,6 +50,14 @@ impl<const N: usize> DenseOutput<N> {
         self.r1 + (self.r2 + (self.r3 + (self.r4 + self.r5 * theta1) * theta) * theta1) * theta
     }
 
+    /// A bound, per component, of how far the output strays from its chord (the straight line
+    /// from `y(t0)` to `y(t0 + h)`) inside the step: the deviation is
+    /// `theta (1-theta) (r3 + theta (r4 + (1-theta) r5))`, with `theta (1-theta) <= 1/4`.
+    #[inline]
+    pub fn chord_deviation(&self) -> State<N> {
+        (self.r3.abs() + self.r4.abs() + self.r5.abs() * 0.25) * 0.25
+    }
+
     /// End of the interval this output covers.
     pub fn t1(&self) -> f64 {
         self.t0 + self.h

@@ -463,6 +463,27 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         h
     }
 
+    /// Whether the step provably holds no crossing of any event function: each has one strict
+    /// sign at both ends (`self.g` at `t0`, `g1` at `t1`) and the system's bound of its
+    /// straying from the chord ([`OdeSystem::event_chord_bound`]) is below its smaller end
+    /// value, so it cannot reach zero inside.
+    fn holds_no_crossing(&self, dense: &DenseOutput<N>, t0: f64, t1: f64, g1: &[f64]) -> bool {
+        let deviation = dense.chord_deviation();
+        (0..self.n_events).all(|i| {
+            let (a, b) = (self.g[i], g1[i]);
+            let margin = if a > 0.0 && b > 0.0 {
+                a.min(b)
+            } else if a < 0.0 && b < 0.0 {
+                -a.max(b)
+            } else {
+                return false;
+            };
+            self.sys
+                .event_chord_bound(i, t0, t1, &deviation)
+                .is_some_and(|bound| bound < margin)
+        })
+    }
+
     /// Find and handle the events in `(t0, t1]`, in time order. Returns where the step ends if
     /// a handler cut it (`Restart` or `Stop`), the state there (after the handler), and the
     /// strongest action taken. `self.g` holds the values at `t0` on entry and at the end of
@@ -477,6 +498,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     ) -> (f64, State<N>, EventAction) {
         let n = self.n_events;
         if n == 0 {
+            return (t1, *y1, EventAction::Continue);
+        }
+        let mut g_end = [0.0; MAX_EVENTS];
+        self.eval_events(t1, y1, &mut g_end);
+        if self.holds_no_crossing(dense, t0, t1, &g_end) {
+            self.g = g_end;
             return (t1, *y1, EventAction::Continue);
         }
         let segments = self.opts.event_subdivisions + 1;
@@ -503,9 +530,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 k += 1;
                 continue;
             }
-            let y_hi = if k == segments { *y1 } else { dense.eval(hi_t) };
-            let mut g_hi = [0.0; MAX_EVENTS];
-            self.eval_events(hi_t, &y_hi, &mut g_hi);
+            let mut g_hi = g_end;
+            if hi_t != t1 {
+                self.eval_events(hi_t, &dense.eval(hi_t), &mut g_hi);
+            }
 
             // Locate every crossing in (lo_t, hi_t]; keep the earliest time.
             let mut t_first = f64::INFINITY;
@@ -566,7 +594,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             for (i, d) in dirs[..n].iter_mut().enumerate() {
                 *d = self.sys.event_direction(i);
             }
-            // Record-only: go on scanning from the far side of the crossing.
+            // Record-only: go on scanning from the far side of the crossing, with the values
+            // the handlers may have changed.
+            self.eval_events(t1, y1, &mut g_end);
             lo_t = t_first;
             let mut g = [0.0; MAX_EVENTS];
             self.eval_events(t_first, &y_state, &mut g);

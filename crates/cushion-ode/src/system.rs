@@ -114,6 +114,24 @@ pub trait OdeSystem<const N: usize> {
         Direction::Both
     }
 
+    /// Optional, for a cheaper event scan: a bound of how far `g_i(t, y(t))` can stray, for `t`
+    /// in `[t0, t1]`, from the straight line between its values at `t0` and `t1`, when each
+    /// component `y_j(t)` of the step's dense output strays at most `deviation[j]` from its own
+    /// chord. For `g_i(t, y) = c . y + r(t)` (affine in the state) it is
+    /// `sum_j |c_j| deviation[j] + max |r - chord of r|`. A step on which every event function
+    /// has one strict sign at both ends and a bound below its smaller end value holds no
+    /// crossing, and is not sampled inside. `None` (the default): the step is sampled at the
+    /// interior points (`SolverOptions::event_subdivisions`).
+    fn event_chord_bound(
+        &self,
+        _i: usize,
+        _t0: f64,
+        _t1: f64,
+        _deviation: &State<N>,
+    ) -> Option<f64> {
+        None
+    }
+
     /// Called at a located crossing of `g_i`, at time `t` (on the far side of the crossing).
     /// It may change `y` and the regime; it must say so by returning `Restart`.
     fn on_event(
