@@ -81,6 +81,7 @@
 
 pub mod config;
 pub mod model;
+mod peaks;
 pub mod physics;
 mod ringing;
 mod ringing_tail;

@@ -23,10 +23,12 @@
 //!
 //! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at four points of every step's dense output;
 //! the step holding the largest sample keeps five nodes of its dense output (a degree-4
-//! polynomial, so they reproduce it exactly) and the peak inside it is located once, at the end
-//! of the run, by golden-section search.
+//! polynomial, so they reproduce it exactly) and the peak inside it (or just after it, in the
+//! next step, when the largest sample is the step's end) is located once, at the end of the run,
+//! by Brent's search (`peaks.rs`).
 
 use crate::config::{Module, RobotStart, Scene};
+use crate::peaks::{PeakCandidate, PeakStep, K};
 use crate::physics::{self, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
@@ -134,7 +136,7 @@ pub(crate) struct Params {
 }
 
 /// The discrete state of the run.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Regime {
     pub detected: bool,
     pub obj_contact: bool,
@@ -282,9 +284,9 @@ pub struct Model {
     pub(crate) next_ringing_check: f64,
     /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
     pub(crate) ringing_cache: Vec<(f64, bool, Option<crate::ringing_tail::Linearisation>)>,
-    fr_peak_step: Option<PeakStep>,
-    fc_peak_step: Option<PeakStep>,
-    s_peak_step: Option<PeakStep>,
+    fr_peak: PeakCandidate,
+    fc_peak: PeakCandidate,
+    s_peak: PeakCandidate,
     /// `F_r, F_c, s, sd` at the end of the last step.
     last_sample: Option<(f64, f64, f64, f64)>,
     /// Steps still to sample in full (set by events and time stops).
@@ -454,9 +456,9 @@ impl Model {
                 * scene.robot.approach_speed,
             next_ringing_check: 0.0,
             ringing_cache: Vec::new(),
-            fr_peak_step: None,
-            fc_peak_step: None,
-            s_peak_step: None,
+            fr_peak: PeakCandidate::default(),
+            fc_peak: PeakCandidate::default(),
+            s_peak: PeakCandidate::default(),
             last_sample: None,
             force_sample: 0,
             early_end_enabled: scene.solver.early_end,
@@ -892,37 +894,33 @@ impl Model {
         (tool_settled && object_done) || self.try_ringing_tail(t, y)
     }
 
-    /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest samples,
-    /// by golden-section search on the step's dense output (rebuilt from its five nodes).
+    /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest
+    /// samples (`peaks.rs`), on the step's dense output (rebuilt from its five nodes).
     pub(crate) fn refine_peaks(&mut self) {
         let n = self.layout.n.clamp(1, MAX_STATES);
-        if let Some(c) = self.fr_peak_step.take() {
-            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).f_r;
-            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-            let (t, v) = golden_max(
-                |t| f(t).abs(),
-                lo,
-                hi,
-                c.ts[c.k],
-                self.metrics.peak_fr.abs(),
-            );
-            if v > self.metrics.peak_fr.abs() {
-                self.metrics.peak_fr = f(t);
-                self.metrics.t_peak_fr = t;
-            }
+        let at = |c: &PeakStep, t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime);
+        let m = &self.metrics;
+        let (t, v) = self
+            .fr_peak
+            .locate(|c, t| at(c, t).f_r.abs(), m.peak_fr.abs());
+        // the signed force at the refined peak, from the step that holds it
+        let refined = (v > m.peak_fr.abs())
+            .then(|| {
+                [&self.fr_peak.after, &self.fr_peak.at]
+                    .into_iter()
+                    .flatten()
+                    .find(|c| t >= c.ts[0] && t <= c.ts[K])
+                    .map(|c| at(c, t).f_r)
+            })
+            .flatten();
+        let (_, fc) = self.fc_peak.locate(|c, t| at(c, t).f_c, m.peak_fc);
+        let (_, s) = self.s_peak.locate(|c, t| at(c, t).s, m.max_stroke);
+        if let Some(f_r) = refined {
+            self.metrics.peak_fr = f_r;
+            self.metrics.t_peak_fr = t;
         }
-        if let Some(c) = self.fc_peak_step.take() {
-            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).f_c;
-            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-            let (_, v) = golden_max(f, lo, hi, c.ts[c.k], self.metrics.peak_fc);
-            self.metrics.peak_fc = self.metrics.peak_fc.max(v);
-        }
-        if let Some(c) = self.s_peak_step.take() {
-            let f = |t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime).s;
-            let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-            let (_, v) = golden_max(f, lo, hi, c.ts[c.k], self.metrics.max_stroke);
-            self.metrics.max_stroke = self.metrics.max_stroke.max(v);
-        }
+        self.metrics.peak_fc = fc;
+        self.metrics.max_stroke = s;
     }
 
     fn observe_step<const N: usize>(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
@@ -1008,18 +1006,24 @@ impl Model {
             regime: r,
             k,
         };
+        // A largest sample at the previous step's end: the peak may lie in this step.
+        for c in [&mut self.fr_peak, &mut self.fc_peak, &mut self.s_peak] {
+            if c.wants_next() {
+                c.follow(cand(0));
+            }
+        }
         if fr_best.1.abs() > self.metrics.peak_fr.abs() {
             self.metrics.peak_fr = fr_best.1;
             self.metrics.t_peak_fr = tk(fr_best.0);
-            self.fr_peak_step = Some(cand(fr_best.0));
+            self.fr_peak.set(cand(fr_best.0));
         }
         if fc_best.1 > self.metrics.peak_fc {
             self.metrics.peak_fc = fc_best.1;
-            self.fc_peak_step = Some(cand(fc_best.0));
+            self.fc_peak.set(cand(fc_best.0));
         }
         if self.layout.tool.is_some() && s_best.1 > self.metrics.max_stroke {
             self.metrics.max_stroke = s_best.1;
-            self.s_peak_step = Some(cand(s_best.0));
+            self.s_peak.set(cand(s_best.0));
         }
         if self.record.is_some() {
             let mut pts = Vec::new();
@@ -1048,86 +1052,9 @@ impl Model {
     }
 }
 
-/// Samples of the physics per step (besides its start).
-const K: usize = 4;
-
 /// The largest state a scene can need (tool 2 + liquid 2 + object 2 + ledger 6 + contact
 /// impulse 1).
 pub const MAX_STATES: usize = 13;
-
-/// A step that holds a peak candidate: its dense output as five equally spaced nodes.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct PeakStep {
-    ts: [f64; K + 1],
-    nodes: [[f64; MAX_STATES]; K + 1],
-    seg: Segment,
-    regime: Regime,
-    /// Index of the largest sample.
-    k: usize,
-}
-
-impl PeakStep {
-    /// The state at `t` by Lagrange interpolation through the nodes (exact for the degree-4
-    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods).
-    fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
-        let mut y = [0.0; MAX_STATES];
-        for j in 0..=K {
-            let mut l = 1.0;
-            for m in 0..=K {
-                if m != j {
-                    l *= (t - self.ts[m]) / (self.ts[j] - self.ts[m]);
-                }
-            }
-            for (yi, ni) in y.iter_mut().zip(self.nodes[j].iter()) {
-                *yi += l * ni;
-            }
-        }
-        y
-    }
-}
-
-/// Largest value of `f` on `[lo, hi]` by golden-section search, starting from a known sample
-/// `(t_best, f_best)`; returns `(t, f(t))` of the best point seen.
-fn golden_max(
-    f: impl Fn(f64) -> f64,
-    mut lo: f64,
-    mut hi: f64,
-    t_best: f64,
-    f_best: f64,
-) -> (f64, f64) {
-    const R: f64 = 0.618_033_988_749_894_9;
-    let mut best = (t_best, f_best);
-    let mut a = hi - R * (hi - lo);
-    let mut b = lo + R * (hi - lo);
-    let mut fa = f(a);
-    let mut fb = f(b);
-    // 24 reductions shrink the bracket by 1e-5: the value is then right to ~1e-10 relative.
-    for _ in 0..24 {
-        if fa > best.1 {
-            best = (a, fa);
-        }
-        if fb > best.1 {
-            best = (b, fb);
-        }
-        if (hi - lo) <= 1e-12 * (1.0 + hi.abs()) {
-            break;
-        }
-        if fa >= fb {
-            hi = b;
-            b = a;
-            fb = fa;
-            a = hi - R * (hi - lo);
-            fa = f(a);
-        } else {
-            lo = a;
-            a = b;
-            fa = fb;
-            b = lo + R * (hi - lo);
-            fb = f(b);
-        }
-    }
-    (best.0, best.1)
-}
 
 #[inline]
 fn pos15(d: f64) -> f64 {

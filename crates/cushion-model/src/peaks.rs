@@ -1,0 +1,230 @@
+//! Peaks inside steps: the step that holds the largest sample of a quantity (`|F_r|`, `F_c`,
+//! the stroke) keeps its dense output, and the peak is located in it once, at the end of the
+//! run, by Brent's search.
+//!
+//! The physics is sampled at four points of every step (`model.rs`, `observe_step`). When the
+//! largest sample is a step's end, the peak may lie on either side of it: just before it in
+//! that step, or just after it in the next one. The next step is then kept as well and both
+//! sides are searched (a peak found only on the near side was up to 1e-3 low in bistable
+//! back-stop impacts).
+
+use crate::model::{Regime, MAX_STATES};
+use crate::physics::Segment;
+
+/// Samples of the physics per step (besides its start).
+pub(crate) const K: usize = 4;
+
+/// A step as five equally spaced nodes of its dense output (a polynomial of degree 4 in `t`,
+/// so the nodes reproduce it exactly), with the robot segment and regime it ran in.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PeakStep {
+    pub ts: [f64; K + 1],
+    pub nodes: [[f64; MAX_STATES]; K + 1],
+    pub seg: Segment,
+    pub regime: Regime,
+    /// Index of the largest sample.
+    pub k: usize,
+}
+
+impl PeakStep {
+    /// The state at `t` by Lagrange interpolation through the nodes (exact for the degree-4
+    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods).
+    pub fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
+        let mut y = [0.0; MAX_STATES];
+        for j in 0..=K {
+            let mut l = 1.0;
+            for m in 0..=K {
+                if m != j {
+                    l *= (t - self.ts[m]) / (self.ts[j] - self.ts[m]);
+                }
+            }
+            for (yi, ni) in y.iter_mut().zip(self.nodes[j].iter()) {
+                *yi += l * ni;
+            }
+        }
+        y
+    }
+}
+
+/// Where one quantity's peak is: the step with its largest sample and, when that sample is the
+/// step's end, the step after it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PeakCandidate {
+    pub at: Option<PeakStep>,
+    pub after: Option<PeakStep>,
+    wants_next: bool,
+}
+
+impl PeakCandidate {
+    /// A new largest sample, in `step` at node `step.k`.
+    pub fn set(&mut self, step: PeakStep) {
+        self.wants_next = step.k == K;
+        self.at = Some(step);
+        self.after = None;
+    }
+
+    /// Whether the step that follows should be kept (see [`Self::follow`]).
+    pub fn wants_next(&self) -> bool {
+        self.wants_next
+    }
+
+    /// The step right after the one holding the largest sample at its end.
+    pub fn follow(&mut self, next: PeakStep) {
+        if self.wants_next {
+            self.after = Some(next);
+            self.wants_next = false;
+        }
+    }
+
+    /// The largest value of `f(step, t)` near the largest sample, whose value is `f_best`:
+    /// within the two sample intervals around it, and in the first sample interval of the next
+    /// step when the sample is a step's end. Returns `(t, value)`; `t` is NaN without a
+    /// candidate.
+    pub fn locate(&self, f: impl Fn(&PeakStep, f64) -> f64, f_best: f64) -> (f64, f64) {
+        let Some(c) = &self.at else {
+            return (f64::NAN, f_best);
+        };
+        let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
+        let mut best = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
+        if let Some(n) = &self.after {
+            // from the shared end point, a bracket end here
+            let (t, v) = brent_max(|t| f(n, t), n.ts[0], n.ts[1], (n.ts[0], f(n, n.ts[0])));
+            if v > best.1 {
+                best = (t, v);
+            }
+        }
+        best
+    }
+}
+
+/// Largest value of `f` on `[lo, hi]` by Brent's method (golden-section steps, parabolic
+/// steps where the parabola through the three best points is trusted), starting from a known
+/// point `(t, f(t))` in the bracket. Returns the best point seen; the bracket shrinks to 1e-7
+/// of its width, so a smooth peak's value is right to ~1e-14 relative.
+pub(crate) fn brent_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64, start: (f64, f64)) -> (f64, f64) {
+    const GOLD: f64 = 0.381_966_011_250_105_1; // (3 - sqrt 5) / 2
+    let (mut a, mut b) = (lo.min(hi), lo.max(hi));
+    let tol = 1e-7 * (b - a) + 1e-300;
+    // minimise g = -f; x best, w second best, v the previous w
+    let (mut x, mut fx) = (start.0.clamp(a, b), -start.1);
+    let (mut w, mut fw, mut v, mut fv) = (x, fx, x, fx);
+    let (mut d, mut e) = (0.0f64, 0.0f64);
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if (x - m).abs() <= 2.0 * tol - 0.5 * (b - a) {
+            break;
+        }
+        let mut parabolic = false;
+        if e.abs() > tol {
+            let r = (x - w) * (fx - fv);
+            let q0 = (x - v) * (fx - fw);
+            let mut p = (x - v) * q0 - (x - w) * r;
+            let mut q = 2.0 * (q0 - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let e_before = e;
+            e = d;
+            if p.abs() < (0.5 * q * e_before).abs() && p > q * (a - x) && p < q * (b - x) {
+                d = p / q;
+                let u = x + d;
+                if u - a < 2.0 * tol || b - u < 2.0 * tol {
+                    d = tol.copysign(m - x);
+                }
+                parabolic = true;
+            }
+        }
+        if !parabolic {
+            e = if x >= m { a - x } else { b - x };
+            d = GOLD * e;
+        }
+        let u = if d.abs() >= tol {
+            x + d
+        } else {
+            x + tol.copysign(d)
+        };
+        let fu = -f(u);
+        if fu <= fx {
+            if u >= x {
+                a = x;
+            } else {
+                b = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
+        }
+    }
+    (x, -fx)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    #[test]
+    fn brent_finds_a_smooth_peak_to_round_off_in_few_evaluations() {
+        // f = cos(t - 0.3) peaks at 0.3 with value 1; start from a sample at 0.25
+        let calls = Cell::new(0);
+        let f = |t: f64| {
+            calls.set(calls.get() + 1);
+            (t - 0.3).cos()
+        };
+        let (t, v) = brent_max(f, 0.2, 0.45, (0.25, (0.25f64 - 0.3).cos()));
+        assert!((t - 0.3).abs() < 1e-7, "{t}");
+        assert!((v - 1.0).abs() < 1e-14, "{v}");
+        assert!(calls.get() <= 20, "{} evaluations", calls.get());
+    }
+
+    #[test]
+    fn brent_returns_the_bracket_end_for_a_monotone_function() {
+        let (t, v) = brent_max(|t| t * t, 1.0, 2.0, (1.5, 2.25));
+        assert!((t - 2.0).abs() < 1e-6, "{t}");
+        assert!((v - 4.0).abs() < 1e-5, "{v}");
+    }
+
+    #[test]
+    fn brent_keeps_the_start_when_nothing_is_larger() {
+        // a kink peak at the start point itself
+        let (t, v) = brent_max(|t: f64| 1.0 - (t - 0.5).abs(), 0.0, 1.0, (0.5, 1.0));
+        assert_eq!((t, v), (0.5, 1.0));
+    }
+
+    #[test]
+    fn lagrange_nodes_reproduce_a_quartic() {
+        let q = |t: f64| 1.0 + t - 2.0 * t * t + 0.5 * t.powi(3) - 0.25 * t.powi(4);
+        let ts: [f64; K + 1] = std::array::from_fn(|k| 0.1 + 0.05 * k as f64);
+        let mut nodes = [[0.0; MAX_STATES]; K + 1];
+        for k in 0..=K {
+            nodes[k][0] = q(ts[k]);
+        }
+        let step = PeakStep {
+            ts,
+            nodes,
+            seg: Segment {
+                t0: 0.0,
+                x0: 0.0,
+                v0: 0.0,
+                a: 0.0,
+                phase: crate::physics::Phase::Stopped,
+            },
+            regime: Regime::default(),
+            k: 2,
+        };
+        for t in [0.1, 0.13, 0.2, 0.29] {
+            assert!((step.state_at(t)[0] - q(t)).abs() < 1e-14);
+        }
+    }
+}

@@ -1,0 +1,71 @@
+//! Peaks of the summary (`peak_robot_force`, `peak_contact_force`, `max_stroke`) against a run
+//! at rtol 1e-11, in scenes of the design space where the largest sample of a step is its end
+//! and the peak lies just after it, in the next step (there the peak used to come out up to
+//! 1e-3 low at rtol 1e-6).
+
+use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+
+fn bistable(dead_time: &str, gas: &str, orifice: &str, mass: &str, rtol: &str) -> Summary {
+    let mut s = Scene::default();
+    for (k, v) in [
+        ("module", "bistable"),
+        ("robot.dead_time", dead_time),
+        ("hydraulic.gas_pressure", gas),
+        ("hydraulic.orifice_radius", orifice),
+        ("object.mass", mass),
+        ("solver.rtol", rtol),
+    ] {
+        s.set_from_str(k, v).unwrap();
+    }
+    let r = simulate(&s, &RunOptions::default());
+    assert_eq!(r.summary.status, RunStatus::Ok, "{}", r.summary.message);
+    r.summary
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn peaks_just_after_a_step_end_are_found() {
+    // (dead time, gas pressure, orifice, object mass) of design-space runs 569, 9702 and of one
+    // of issue 4's equivalence runs
+    let scenes = [
+        (
+            "0.010719060897827148",
+            "2017.9125759827132",
+            "0.009920644283294679",
+            "0.15272291302680968",
+        ),
+        (
+            "0.09929921627044679",
+            "546.7457223593649",
+            "0.003997336149215698",
+            "0.11822313070297241",
+        ),
+        (
+            "0.0983966112136841",
+            "12336.250142108305",
+            "0.010558672666549683",
+            "0.2229530394077301",
+        ),
+    ];
+    for (dt, gas, orifice, mass) in scenes {
+        let run = bistable(dt, gas, orifice, mass, "1e-6");
+        let reference = bistable(dt, gas, orifice, mass, "1e-11");
+        let errors = [
+            rel(run.peak_robot_force, reference.peak_robot_force),
+            rel(run.peak_contact_force, reference.peak_contact_force),
+            rel(run.max_stroke, reference.max_stroke),
+        ];
+        for e in errors {
+            assert!(e < 5e-5, "{dt} {gas} {orifice} {mass}: {errors:?}");
+        }
+        assert!(
+            (run.t_peak_robot_force - reference.t_peak_robot_force).abs() < 1e-6,
+            "{} vs {}",
+            run.t_peak_robot_force,
+            reference.t_peak_robot_force
+        );
+    }
+}
