@@ -233,8 +233,11 @@ impl Model {
     }
 
     /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
-    /// acceleration `a_r`; `None` if the tool has no such equilibrium on its stop or rings too
-    /// strongly for the closed form.
+    /// acceleration `a_r`. `Err(Some(wait))` if it rings too strongly for the closed form now,
+    /// with the time (s) its amplitude needs to decay to the limit at the largest decay rate it
+    /// can have, `lambda + mu a` (linear and orifice damping; the orifice's share falls with the
+    /// amplitude, so the real wait is longer); `Err(None)` if the tool has no equilibrium on
+    /// its stop or the closed form does not describe it.
     fn ringing_piece(
         &mut self,
         t: f64,
@@ -243,22 +246,34 @@ impl Model {
         a_r: f64,
         s: f64,
         sd: f64,
-    ) -> Option<Piece> {
-        let lin = self.linearisation(t, y, seg, a_r, s)?;
+    ) -> Result<Piece, Option<f64>> {
+        let lin = self.linearisation(t, y, seg, a_r, s).ok_or(None)?;
         let c = &lin.coef;
         let (u0, max) = (s - lin.s_eq, self.ringing_max_amplitude * lin.depth);
-        // the linear amplitude first: most checks end here, cheaply
-        if !(c.k1 > 0.0)
-            || u0.hypot((sd + c.c / (2.0 * c.m) * u0) / (c.k1 / c.m).sqrt()) > 1.3 * max
-        {
-            return None;
+        if !(c.k1 > 0.0) {
+            return Err(None);
         }
-        let ring = Ringing::through(c, t, u0, sd)?;
+        let w0 = (c.k1 / c.m).sqrt();
+        // time for amplitude `a` to decay to `limit`
+        let wait = |a: f64, limit: f64| {
+            let rate = c.c / (2.0 * c.m) + 4.0 * c.q * w0 / (3.0 * std::f64::consts::PI * c.m) * a;
+            (rate > 0.0).then(|| (a / limit).ln() / rate)
+        };
+        // the linear amplitude first (it may exceed the closed form's by up to 30 %): most
+        // checks end here, cheaply
+        let a_lin = u0.hypot((sd + c.c / (2.0 * c.m) * u0) / w0);
+        if !(a_lin <= 1.3 * max) {
+            return Err(wait(a_lin, 1.3 * max));
+        }
+        let ring = Ringing::through(c, t, u0, sd).ok_or(None)?;
         // small amplitude, and the orifice's damping weak too (the averaging assumes both)
-        if !(ring.reach() <= max) || !(ring.orifice_damping_ratio() <= MAX_ORIFICE_DAMPING) {
-            return None;
+        if !(ring.reach() <= max) {
+            return Err(wait(ring.reach(), max));
         }
-        Some(Piece {
+        if !(ring.orifice_damping_ratio() <= MAX_ORIFICE_DAMPING) {
+            return Err(None);
+        }
+        Ok(Piece {
             t0: t,
             s_eq: lin.s_eq,
             depth: lin.depth,
@@ -291,10 +306,21 @@ impl Model {
         let (x_r, v_r, a_r) = seg.at(t);
         let i = self.layout.tool.unwrap_or(0);
         let (s, sd) = (x_r - y[i], v_r - y[i + 1]);
-        let Some(first) = self.ringing_piece(t, y, &seg, a_r, s, sd) else {
-            // look again once the ringing may have decayed enough: a tenth of a period on
-            self.next_ringing_check = t + 0.1 * self.ringing_period_guess();
-            return false;
+        let first = match self.ringing_piece(t, y, &seg, a_r, s, sd) {
+            Ok(piece) => piece,
+            Err(wait) => {
+                // look again once the ringing may have decayed enough: when its amplitude can
+                // first be small enough, and at least a tenth of a period on
+                // (or right after the robot's next kink: a new equilibrium, a new amplitude)
+                let tenth = 0.1 * self.ringing_period_guess();
+                let kink = match seg.phase {
+                    Phase::Braking => seg.t0 + seg.v0 / self.robot.a_brake,
+                    _ => self.pending_brake.unwrap_or(f64::INFINITY),
+                };
+                let next = t + wait.map_or(tenth, |w| w.max(tenth));
+                self.next_ringing_check = next.min(kink.max(t + tenth));
+                return false;
+            }
         };
         // the robot's segments still to come: braking at the pending brake time, standing at
         // the end of braking
@@ -353,11 +379,11 @@ impl Model {
     fn extend_tail(&mut self, tail: &mut RingingTail, y: &[f64], next: &Segment) -> bool {
         let (s, sd) = tail.stroke_at(next.t0);
         match self.ringing_piece(next.t0, y, next, next.a, s, sd) {
-            Some(piece) => {
+            Ok(piece) => {
                 tail.pieces.push(piece);
                 true
             }
-            None => {
+            Err(_) => {
                 self.next_ringing_check = next.t0;
                 false
             }
