@@ -898,29 +898,30 @@ impl Model {
     /// samples (`peaks.rs`), on the step's dense output (rebuilt from its five nodes).
     pub(crate) fn refine_peaks(&mut self) {
         let n = self.layout.n.clamp(1, MAX_STATES);
+        let (fr, fc, s) = (
+            std::mem::take(&mut self.fr_peak),
+            std::mem::take(&mut self.fc_peak),
+            std::mem::take(&mut self.s_peak),
+        );
         let at = |c: &PeakStep, t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime);
         let m = &self.metrics;
-        let (t, v) = self
-            .fr_peak
-            .locate(|c, t| at(c, t).f_r.abs(), m.peak_fr.abs());
         // the signed force at the refined peak, from the step that holds it
-        let refined = (v > m.peak_fr.abs())
-            .then(|| {
-                [&self.fr_peak.after, &self.fr_peak.at]
-                    .into_iter()
-                    .flatten()
-                    .find(|c| t >= c.ts[0] && t <= c.ts[K])
-                    .map(|c| at(c, t).f_r)
-            })
-            .flatten();
-        let (_, fc) = self.fc_peak.locate(|c, t| at(c, t).f_c, m.peak_fc);
-        let (_, s) = self.s_peak.locate(|c, t| at(c, t).s, m.max_stroke);
-        if let Some(f_r) = refined {
+        let peak_fr = fr
+            .locate(|c, t| at(c, t).f_r.abs(), m.peak_fr.abs())
+            .filter(|&(_, v, _)| v > m.peak_fr.abs())
+            .map(|(t, _, c)| (t, at(c, t).f_r));
+        let peak_fc = fc.locate(|c, t| at(c, t).f_c, m.peak_fc).map(|p| p.1);
+        let max_stroke = s.locate(|c, t| at(c, t).s, m.max_stroke).map(|p| p.1);
+        if let Some((t, f_r)) = peak_fr {
             self.metrics.peak_fr = f_r;
             self.metrics.t_peak_fr = t;
         }
-        self.metrics.peak_fc = fc;
-        self.metrics.max_stroke = s;
+        if let Some(v) = peak_fc {
+            self.metrics.peak_fc = v;
+        }
+        if let Some(v) = max_stroke {
+            self.metrics.max_stroke = v;
+        }
     }
 
     fn observe_step<const N: usize>(&mut self, step: &Step<'_, N>, ctl: &mut Control) {

@@ -78,22 +78,25 @@ impl PeakCandidate {
 
     /// The largest value of `f(step, t)` near the largest sample, whose value is `f_best`:
     /// within the two sample intervals around it, and in the first sample interval of the next
-    /// step when the sample is a step's end. Returns `(t, value)`; `t` is NaN without a
-    /// candidate.
-    pub fn locate(&self, f: impl Fn(&PeakStep, f64) -> f64, f_best: f64) -> (f64, f64) {
-        let Some(c) = &self.at else {
-            return (f64::NAN, f_best);
-        };
+    /// step when the sample is a step's end. Returns `(t, value, the step that holds it)`;
+    /// `None` without a candidate.
+    pub fn locate(
+        &self,
+        f: impl Fn(&PeakStep, f64) -> f64,
+        f_best: f64,
+    ) -> Option<(f64, f64, &PeakStep)> {
+        let c = self.at.as_ref()?;
         let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-        let mut best = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
+        let (t, v) = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
+        let mut best = (t, v, c);
         if let Some(n) = &self.after {
             // from the shared end point, a bracket end here
             let (t, v) = brent_max(|t| f(n, t), n.ts[0], n.ts[1], (n.ts[0], f(n, n.ts[0])));
             if v > best.1 {
-                best = (t, v);
+                best = (t, v, n);
             }
         }
-        best
+        Some(best)
     }
 }
 
