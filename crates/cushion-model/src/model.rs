@@ -28,7 +28,7 @@
 //! by Brent's search (`peaks.rs`).
 
 use crate::config::{Module, RobotStart, Scene};
-use crate::peaks::{PeakCandidate, PeakStep, K};
+use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};
 use crate::physics::{self, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
@@ -939,14 +939,21 @@ impl Model {
                 t0 + (t1 - t0) * (k as f64 / K as f64)
             }
         };
+        // the states the physics reads (the ledger's quadratures come after them)
+        let dynamic = self
+            .layout
+            .work
+            .or(self.layout.contact_impulse)
+            .unwrap_or(n)
+            .min(MAX_DYNAMIC);
         let node = |k: usize| {
-            let mut v = [0.0; MAX_STATES];
+            let mut v = [0.0; MAX_DYNAMIC];
             let yk = match k {
                 0 => *step.y0,
                 K => *step.y1,
                 _ => step.at(tk(k)),
             };
-            v[..n].copy_from_slice(&yk.as_slice()[..n]);
+            v[..dynamic].copy_from_slice(&yk.as_slice()[..dynamic]);
             v
         };
         let mut fr_best = (0usize, 0.0f64);
@@ -983,13 +990,12 @@ impl Model {
                     || (sd0 > 0.0 && e1.sd <= 0.0)
             }
         };
-        // The nodes are computed at most once per step: for the interior samples, or for a new
-        // peak candidate below.
-        let mut nodes: Option<[[f64; MAX_STATES]; K + 1]> = None;
+        // The nodes of a new peak candidate, computed at most once per step (below).
+        let mut nodes: Option<[[f64; MAX_DYNAMIC]; K + 1]> = None;
         if interior {
-            let nd = nodes.get_or_insert_with(|| std::array::from_fn(node));
-            for (k, yk) in nd.iter().enumerate().take(K).skip(1) {
-                let e = self.eval_inline(tk(k), &yk[..n], &seg, &r);
+            for k in 1..K {
+                let yk = step.at(tk(k));
+                let e = self.eval_inline(tk(k), yk.as_slice(), &seg, &r);
                 consider(k, &e);
             }
         }

@@ -14,12 +14,17 @@ use crate::physics::Segment;
 /// Samples of the physics per step (besides its start).
 pub(crate) const K: usize = 4;
 
+/// The most states the physics reads (tool 2 + liquid 2 + object 2; they come first in the
+/// layout): the ledger's quadratures after them do not enter any force.
+pub(crate) const MAX_DYNAMIC: usize = 6;
+
 /// A step as five equally spaced nodes of its dense output (a polynomial of degree 4 in `t`,
-/// so the nodes reproduce it exactly), with the robot segment and regime it ran in.
+/// so the nodes reproduce it exactly), with the robot segment and regime it ran in. Only the
+/// states the physics reads are kept.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PeakStep {
     pub ts: [f64; K + 1],
-    pub nodes: [[f64; MAX_STATES]; K + 1],
+    pub nodes: [[f64; MAX_DYNAMIC]; K + 1],
     pub seg: Segment,
     pub regime: Regime,
     /// Index of the largest sample.
@@ -28,7 +33,8 @@ pub(crate) struct PeakStep {
 
 impl PeakStep {
     /// The state at `t` by Lagrange interpolation through the nodes (exact for the degree-4
-    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods).
+    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods); the
+    /// quadratures after the kept states are zero.
     pub fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
         let mut y = [0.0; MAX_STATES];
         for j in 0..=K {
@@ -209,7 +215,7 @@ mod tests {
     fn lagrange_nodes_reproduce_a_quartic() {
         let q = |t: f64| 1.0 + t - 2.0 * t * t + 0.5 * t.powi(3) - 0.25 * t.powi(4);
         let ts: [f64; K + 1] = std::array::from_fn(|k| 0.1 + 0.05 * k as f64);
-        let mut nodes = [[0.0; MAX_STATES]; K + 1];
+        let mut nodes = [[0.0; MAX_DYNAMIC]; K + 1];
         for k in 0..=K {
             nodes[k][0] = q(ts[k]);
         }
