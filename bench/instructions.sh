@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Instructions per run of each paper scene (rtol 1e-6), counted by valgrind's cachegrind:
-# repeatable to the instruction whatever else the machine does, unlike wall time on this VM.
+# they repeat to within a few instructions per run whatever else the machine does, unlike
+# wall time on this VM.
 #   bash bench/instructions.sh            # needs valgrind (Debian package)
 # Per run = (count for 200 runs - count for 0 runs) / 200, so start-up and parsing drop out.
 set -euo pipefail
