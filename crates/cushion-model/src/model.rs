@@ -697,8 +697,9 @@ impl Model {
     /// whose states stray at most `dev` from theirs (`OdeSystem::event_chord_bound`). The
     /// position and speed events are affine in the state plus the robot's position (a
     /// quadratic in `t` within a step: steps never cross its kinks, which are time stops;
-    /// it strays `|a_r| h^2 / 8`) or speed (linear: 0). The stuck friction and cavitation
-    /// functions are not affine: `None`.
+    /// it strays `|a_r| h^2 / 8`) or speed (linear: 0). The stuck object's function is a
+    /// constant while nothing touches it. The stuck friction functions under load and the
+    /// cavitation function are not affine: `None`.
     fn event_straying(&self, kind: u8, h: f64, dev: &[f64]) -> Option<f64> {
         let r = &self.regime;
         let robot_x = self.robot.current().a.abs() * h * h * 0.125;
@@ -713,6 +714,8 @@ impl Model {
             EV_OBJECT => Some(tool_x + object(0)),
             EV_TOOL_STICK if !r.tool_stuck => Some(tool_v),
             EV_OBJ_STICK if !r.obj_stuck => Some(object(1)),
+            // stuck and untouched: `mu m_p g - F_c` with `F_c = 0`, a constant
+            EV_OBJ_STICK if !r.obj_contact => Some(0.0),
             _ => None,
         }
     }
