@@ -228,6 +228,13 @@ impl<'a> EventKinematics<'a> {
 /// there, `k 1e-21`, is below 1e-15 N for the stiffnesses of the paper.
 const CONTACT_HYSTERESIS: f64 = 1e-14;
 
+/// Relative margin by which the holding force must exceed the friction limit for a stuck tool
+/// or object to slip. A part sticks with a holding force just under the limit; its stuck value
+/// is then constant only up to rounding (a few ulp of the forces it is the difference of), and
+/// without the margin that noise could set off a slip a moment later and a stick right after
+/// (seen with the tool settled at `|F_f| = d` to 4e-13).
+const STICK_HYSTERESIS: f64 = 1e-9;
+
 const EV_SENSOR: u8 = 0;
 const EV_OBJECT: u8 = 1;
 const EV_FWD: u8 = 2;
@@ -674,7 +681,7 @@ impl Model {
             EV_TOOL_STICK => {
                 if r.tool_stuck {
                     let e = self.eval(t, y, k.seg, r);
-                    self.p.d - e.f_f.abs()
+                    self.p.d * (1.0 + STICK_HYSTERESIS) - e.f_f.abs()
                 } else {
                     v_r - v_t
                 }
@@ -682,7 +689,7 @@ impl Model {
             EV_OBJ_STICK => {
                 if r.obj_stuck {
                     let e = self.eval(t, y, k.seg, r);
-                    self.p.mu_n - e.f_c
+                    self.p.mu_n * (1.0 + STICK_HYSTERESIS) - e.f_c
                 } else {
                     let j = self.layout.object.unwrap_or(0);
                     y[j + 1]
