@@ -17,9 +17,11 @@
 //!
 //! Events (only those the scene needs are assembled): sensor `s - s_sensor` (rising, once),
 //! tool-object penetration `x_t - x_p`, forward stop penetration `-s`, back stop penetration
-//! `s - L`, tool stick/slip (`sd` while slipping, `d - |F_static|` while stuck; only with
-//! `tool.dry_friction > 0`), object stick/slip (`v_p` while sliding, `mu m_p g - F_c` while
-//! stuck; only with plane friction). Robot kinks are time stops.
+//! `s - L`, tool stick/slip (`sd` while slipping, `d (1 + 1e-9) - |F_static|` while stuck;
+//! only with `tool.dry_friction > 0`), object stick/slip (`v_p` while sliding,
+//! `mu m_p g (1 + 1e-9) - F_c` while stuck; only with plane friction). Robot kinks are time
+//! stops. The position and speed events tell the integrator how far they can stray inside a
+//! step (`event_chord_bound`), so quiet steps are not sampled inside.
 //!
 //! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at four points of every step's dense output;
 //! the step holding the largest sample keeps five nodes of its dense output (a degree-4
