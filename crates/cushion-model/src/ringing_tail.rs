@@ -390,9 +390,20 @@ impl Model {
         }
     }
 
-    /// A period of the tool on its stop (s), for spacing the checks.
+    /// A period of the tool on its stop (s), for spacing the checks: from the linearisation
+    /// about the current robot segment's equilibrium on the holding stop when there is one,
+    /// else from the stop's stiffness at a depth of 0.1 mm.
     fn ringing_period_guess(&self) -> f64 {
-        let k = 1.5 * self.p.k_e * (1e-4f64).sqrt();
+        let a_r = self.robot.current().a;
+        let fwd = self.regime.fwd;
+        let k = self
+            .ringing_cache
+            .iter()
+            .find(|(a, f, _)| *a == a_r && *f == fwd)
+            .and_then(|(_, _, l)| l.as_ref())
+            .map(|l| l.coef.k1)
+            .filter(|&k1| k1 > 0.0)
+            .unwrap_or(1.5 * self.p.k_e * (1e-4f64).sqrt());
         2.0 * std::f64::consts::PI * (self.p.m_t / k).sqrt()
     }
 
