@@ -292,7 +292,7 @@ pub struct Model {
     /// No ringing-tail check before this time.
     pub(crate) next_ringing_check: f64,
     /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
-    pub(crate) ringing_cache: Vec<(f64, bool, Option<crate::ringing_tail::Linearisation>)>,
+    pub(crate) ringing_cache: Vec<(f64, bool, crate::ringing_tail::Linearisation)>,
     fr_peak: PeakCandidate,
     fc_peak: PeakCandidate,
     s_peak: PeakCandidate,

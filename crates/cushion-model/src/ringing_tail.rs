@@ -145,20 +145,23 @@ impl Model {
         a_r: f64,
         s: f64,
     ) -> Option<Linearisation> {
-        let fwd = self.regime.fwd;
-        if let Some((_, _, l)) = self
-            .ringing_cache
-            .iter()
-            .find(|(a, f, _)| *a == a_r && *f == fwd)
-        {
-            return *l;
+        if let Some(l) = self.cached_linearisation(a_r) {
+            return Some(l);
         }
         // a failure is not kept: Newton may succeed from a later stroke
-        let l = self.linearise(t, y, seg, a_r, s);
-        if l.is_some() {
-            self.ringing_cache.push((a_r, fwd, l));
-        }
-        l
+        let l = self.linearise(t, y, seg, a_r, s)?;
+        self.ringing_cache.push((a_r, self.regime.fwd, l));
+        Some(l)
+    }
+
+    /// The kept linearisation for a robot segment of acceleration `a_r` on the stop that holds
+    /// the tool now, if one was computed.
+    fn cached_linearisation(&self, a_r: f64) -> Option<Linearisation> {
+        let fwd = self.regime.fwd;
+        self.ringing_cache
+            .iter()
+            .find(|(a, f, _)| *a == a_r && *f == fwd)
+            .map(|(_, _, l)| *l)
     }
 
     fn linearise(
@@ -394,13 +397,8 @@ impl Model {
     /// about the current robot segment's equilibrium on the holding stop when there is one,
     /// else from the stop's stiffness at a depth of 0.1 mm.
     fn ringing_period_guess(&self) -> f64 {
-        let a_r = self.robot.current().a;
-        let fwd = self.regime.fwd;
         let k = self
-            .ringing_cache
-            .iter()
-            .find(|(a, f, _)| *a == a_r && *f == fwd)
-            .and_then(|(_, _, l)| l.as_ref())
+            .cached_linearisation(self.robot.current().a)
             .map(|l| l.coef.k1)
             .filter(|&k1| k1 > 0.0)
             .unwrap_or(1.5 * self.p.k_e * (1e-4f64).sqrt());
