@@ -5,18 +5,14 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene};
 
+mod support;
+
 fn main() {
     let n: usize = std::env::args()
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(2000);
-    let mut state = 0x2545F4914F6CDD1Du64;
-    let mut rnd = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut u = support::Uniform::new(0x2545F4914F6CDD1Du64);
     let mut counts = std::collections::BTreeMap::new();
     let mut worst: (f64, String) = (0.0, String::new());
     let mut max_rhs = (0u64, String::new());
@@ -29,10 +25,8 @@ fn main() {
         } else {
             cushion_model::Module::Bistable
         };
-        s.robot.dead_time = 0.1 * rnd();
-        s.hydraulic.gas_pressure = (300f64.ln() + (1e5f64.ln() - 300f64.ln()) * rnd()).exp();
-        s.hydraulic.orifice_radius = 0.002 + 0.010 * rnd();
-        s.object.mass = 0.05 + 0.95 * rnd();
+        s.robot.dead_time = u.span(0.0, 0.1);
+        support::draw_module_axes(&mut s, &mut u);
         let r = simulate(&s, &RunOptions::default());
         let sm = r.summary;
         *counts.entry(sm.status.name()).or_insert(0) += 1;

@@ -5,6 +5,8 @@
 //! residual absolute, the others relative): `ringing_tail_check [N] [KEY=VALUE]...`.
 use cushion_model::{simulate, Module, RunOptions, Scene};
 
+mod support;
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
@@ -14,13 +16,7 @@ fn main() {
             (k.to_string(), v.to_string())
         })
         .collect();
-    let mut state = 0x9E3779B97F4A7C15u64;
-    let mut rnd = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut u = support::Uniform::new(0x9E3779B97F4A7C15u64);
     let names = [
         "robot_impulse",
         "object_final_velocity",
@@ -37,11 +33,9 @@ fn main() {
         } else {
             Module::Bistable
         };
-        s.robot.dead_time = 0.1 * rnd();
-        s.robot.brake_deceleration = 5.0 + 25.0 * rnd();
-        s.hydraulic.gas_pressure = (300f64.ln() + (1e5f64.ln() - 300f64.ln()) * rnd()).exp();
-        s.hydraulic.orifice_radius = 0.002 + 0.010 * rnd();
-        s.object.mass = 0.05 + 0.95 * rnd();
+        s.robot.dead_time = u.span(0.0, 0.1);
+        s.robot.brake_deceleration = u.span(5.0, 25.0);
+        support::draw_module_axes(&mut s, &mut u);
         for (k, v) in &sets {
             s.set_from_str(k, v).expect("valid key");
         }

@@ -1,0 +1,39 @@
+//! What the random-scene examples share: a seeded generator and issue 4's design axes.
+//! (A folder without `main.rs`: Cargo does not take it for an example.)
+#![allow(dead_code)]
+
+use cushion_model::Scene;
+
+/// xorshift64 numbers, uniform in [0, 1): the same seed gives the same scenes.
+pub struct Uniform(u64);
+
+impl Uniform {
+    pub fn new(seed: u64) -> Self {
+        Uniform(seed)
+    }
+
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in `[lo, lo + width)`.
+    pub fn span(&mut self, lo: f64, width: f64) -> f64 {
+        lo + width * self.next()
+    }
+
+    /// Log-uniform in `[lo, hi)`.
+    pub fn log_between(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.next()).exp()
+    }
+}
+
+/// Gas pressure 300 Pa-100 kPa (log), orifice radius 2-12 mm, object mass 0.05-1 kg, drawn in
+/// this order (the dead time, 0-0.1 s, is drawn first by the caller).
+pub fn draw_module_axes(s: &mut Scene, u: &mut Uniform) {
+    s.hydraulic.gas_pressure = u.log_between(300.0, 1e5);
+    s.hydraulic.orifice_radius = u.span(0.002, 0.010);
+    s.object.mass = u.span(0.05, 0.95);
+}
