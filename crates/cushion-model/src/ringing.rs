@@ -32,6 +32,24 @@ pub(crate) struct Coefficients {
     pub k3: f64,
 }
 
+impl Coefficients {
+    /// Undamped angular frequency of the linear part, `sqrt(k1 / m)` (rad/s).
+    pub fn w0(&self) -> f64 {
+        (self.k1 / self.m).sqrt()
+    }
+
+    /// Amplitude decay rate of the linear damping, `c / 2m` (1/s).
+    pub fn linear_decay(&self) -> f64 {
+        self.c / (2.0 * self.m)
+    }
+
+    /// Amplitude decay rate per metre of amplitude of the quadratic (orifice) damping,
+    /// averaged over a cycle, `4 q w0 / (3 pi m)` (1/(m s)): `a' = -(lambda + mu a) a`.
+    pub fn orifice_decay(&self) -> f64 {
+        4.0 * self.q * self.w0() / (3.0 * PI * self.m)
+    }
+}
+
 /// One oscillation from `t0`: amplitude and phase laws and their initial values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Ringing {
@@ -61,8 +79,8 @@ impl Ringing {
         {
             return None;
         }
-        let w0 = (c.k1 / c.m).sqrt();
-        let lambda = c.c / (2.0 * c.m);
+        let w0 = c.w0();
+        let lambda = c.linear_decay();
         let zeta = lambda / w0;
         if zeta >= 0.5 {
             return None;
@@ -74,7 +92,7 @@ impl Ringing {
             zeta,
             wd: w0 * (1.0 - zeta * zeta).sqrt(),
             lambda,
-            mu: 4.0 * c.q * w0 / (3.0 * PI * c.m),
+            mu: c.orifice_decay(),
             nu: 3.0 * alpha3 / (8.0 * w0) - 5.0 * alpha2 * alpha2 / (12.0 * w0.powi(3)),
             h2: alpha2 / (w0 * w0),
             q_m: c.q / c.m,

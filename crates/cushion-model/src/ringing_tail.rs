@@ -256,15 +256,14 @@ impl Model {
         if !(c.k1 > 0.0) {
             return Err(None);
         }
-        let w0 = (c.k1 / c.m).sqrt();
         // time for amplitude `a` to decay to `limit`
         let wait = |a: f64, limit: f64| {
-            let rate = c.c / (2.0 * c.m) + 4.0 * c.q * w0 / (3.0 * std::f64::consts::PI * c.m) * a;
+            let rate = c.linear_decay() + c.orifice_decay() * a;
             (rate > 0.0).then(|| (a / limit).ln() / rate)
         };
         // the linear amplitude first (it may exceed the closed form's by up to 30 %): most
         // checks end here, cheaply
-        let a_lin = u0.hypot((sd + c.c / (2.0 * c.m) * u0) / w0);
+        let a_lin = u0.hypot((sd + c.linear_decay() * u0) / c.w0());
         if !(a_lin <= 1.3 * max) {
             return Err(wait(a_lin, 1.3 * max));
         }
