@@ -1,25 +1,36 @@
-//! Where a run spends its steps: step ends per 10 ms bin.
+//! Where a run spends its steps: `steps SCENE.toml [EDGE_MS]...` counts the accepted steps
+//! that end in each interval between the given times (ms), up to the early end; without
+//! edges, per 10 ms.
 use cushion_model::{simulate, RunOptions, Scene};
 fn main() {
-    let mut scene = Scene::default();
-    for arg in std::env::args().skip(1) {
-        let (k, v) = arg.split_once('=').expect("KEY=VALUE");
-        scene.set_from_str(k, v).expect("valid");
-    }
+    let mut args = std::env::args().skip(1);
+    let path = args.next().expect("steps SCENE.toml [EDGE_MS]...");
+    let scene = Scene::from_file(std::path::Path::new(&path)).expect("readable scene");
+    let mut edges: Vec<f64> = args.map(|a| a.parse::<f64>().expect("a time in ms") * 1e-3).collect();
+    // steps and events only: every step end, plus a point per logged event
     let r = simulate(
         &scene,
         &RunOptions {
             trajectory: true,
-            sample_interval: None,
+            sample_interval: Some(0.0),
         },
     );
-    let pts = r.trajectory.unwrap().points;
-    let mut bins = vec![0; (scene.t_end / 0.01).ceil() as usize + 1];
-    for p in &pts {
-        bins[(p.t / 0.01) as usize] += 1;
+    let end = r
+        .events
+        .iter()
+        .find(|e| e.name == "early_end")
+        .map_or(scene.t_end, |e| e.t);
+    if edges.is_empty() {
+        edges = (1..).map(|k| k as f64 * 0.01).take_while(|&t| t < end).collect();
     }
-    for (i, b) in bins.iter().enumerate() {
-        println!("{:>5.2} {:>4} {}", i as f64 * 0.01, b, "#".repeat(*b / 2));
+    let mut ends: Vec<f64> = r.trajectory.expect("recorded").points.iter().map(|p| p.t).collect();
+    ends.retain(|&t| t > 0.0 && t <= end);
+    ends.dedup(); // an event's point shares the time of the step it cut
+    let mut lo = 0.0;
+    for &hi in edges.iter().chain(std::iter::once(&end)) {
+        let n = ends.iter().filter(|&&t| t > lo && t <= hi).count();
+        println!("{:>9.3} - {:>9.3} ms {:>5}", lo * 1e3, hi * 1e3, n);
+        lo = hi;
     }
     println!("{:?}", r.summary.stats);
 }
