@@ -1154,6 +1154,12 @@ impl<const N: usize> OdeSystem<N> for Model {
         }
     }
 
+    fn event(&self, i: usize, t: f64, y: &State<N>) -> f64 {
+        let y = y.as_slice();
+        let k = EventKinematics::at(self, t, y);
+        self.event_value(self.events[i], t, y, &k)
+    }
+
     fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
         let kind = *self.events.get(i)?;
         self.event_straying(kind, t1 - t0, dev.as_slice())

@@ -1,7 +1,8 @@
 //! The model's bounds of how far its event functions stray from their chords within a step
 //! (`OdeSystem::event_chord_bound`, which lets the integrator skip the interior samples of
 //! quiet steps) hold along whole runs: sampled at 64 points of every step's dense output, no
-//! function strays further than its bound.
+//! function strays further than its bound. At the same points, each function evaluated alone
+//! (`OdeSystem::event`, what the root finder calls) equals its value among all of them.
 
 use cushion_model::model::Model;
 use cushion_model::simulate::solver_options;
@@ -61,8 +62,15 @@ impl Watch<'_> {
         for k in 1..64 {
             let theta = k as f64 / 64.0;
             let t = step.t0 + theta * (step.t1 - step.t0);
-            self.m.events(t, &step.at(t), &mut g[..n]);
+            let y = step.at(t);
+            self.m.events(t, &y, &mut g[..n]);
             for i in 0..n {
+                // the root finder's one-function evaluation is the same function, to the bit
+                assert_eq!(
+                    self.m.event(i, t, &y).to_bits(),
+                    g[i].to_bits(),
+                    "event {i} alone differs at t = {t}"
+                );
                 if let Some(b) = bounds[i] {
                     let chord = g0[i] + theta * (g1[i] - g0[i]);
                     let d = (g[i] - chord).abs();

@@ -541,12 +541,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             for i in 0..n {
                 if dirs[i].crosses(g_lo[i], g_hi[i]) {
                     let sys = &*self.sys;
-                    let mut buf = [0.0; MAX_EVENTS];
                     let te = locate(
-                        |tt| {
-                            sys.events(tt, &dense.eval(tt), &mut buf[..n]);
-                            buf[i]
-                        },
+                        |tt| sys.event(i, tt, &dense.eval(tt)),
                         lo_t,
                         g_lo[i],
                         hi_t,

@@ -109,6 +109,16 @@ pub trait OdeSystem<const N: usize> {
     /// Evaluate every event function `g_i(t, y)` into `g[..event_count()]`.
     fn events(&self, _t: f64, _y: &State<N>, _g: &mut [f64]) {}
 
+    /// Event function `g_i(t, y)` alone, for the root finder, which follows one function at a
+    /// time. It must equal `events`' `g[i]` to the bit; the default computes them all and
+    /// returns that one. Override it where one function is much cheaper than all.
+    fn event(&self, i: usize, t: f64, y: &State<N>) -> f64 {
+        let mut g = [0.0; MAX_EVENTS];
+        let n = self.event_count().min(MAX_EVENTS);
+        self.events(t, y, &mut g[..n]);
+        g[i]
+    }
+
     /// Which sign changes of `g_i` count.
     fn event_direction(&self, _i: usize) -> Direction {
         Direction::Both
