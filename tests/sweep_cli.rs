@@ -502,6 +502,24 @@ fn invalid_sweep_files_fail_before_any_run() {
 }
 
 #[test]
+fn a_folder_another_sweep_is_writing_into_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = sweep_file(dir.path(), "ok", "");
+    let out = dir.path().join("o");
+    // what a running `cushion sweep --out o` holds
+    let running = cushion_sweep::out_lock::OutputLock::take(&out).unwrap();
+    let o = cushion(&["sweep", s(&f), "--out", s(&out)]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("another cushion sweep is writing into this folder"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
+    assert_eq!(fs::read_dir(&out).unwrap().count(), 1, "only the lock file");
+    drop(running);
+    ok(&cushion(&["sweep", s(&f), "--out", s(&out), "--quiet"]));
+    assert!(out.join("summary.parquet").exists());
+}
+
+#[test]
 fn a_row_equals_a_single_simulate() {
     let dir = tempfile::tempdir().unwrap();
     let f = sweep_file(

@@ -10,6 +10,7 @@ pub mod trajectory_mcap;
 // Sweeps.
 pub mod atomic;
 pub mod merge;
+pub mod out_lock;
 pub mod report;
 pub mod runner;
 pub mod sampling;

@@ -18,6 +18,9 @@
 //!   (temporary file, fsync, rename); then `sweep.toml` (a copy of the sweep file),
 //!   `provenance.json`, the report charts (`report-*.svg`), and `.sweep/` is removed.
 //!
+//! - throughout, the empty `DIR/.sweep.lock` is locked (`out_lock.rs`): a second sweep into
+//!   the same folder is refused (exit status 2) before it reads or writes anything there.
+//!
 //! `--shard K/N` runs the runs with `run % N == K - 1` (interleaved, so each shard gets a fair
 //! share of every part of a grid); `cushion merge` joins the shards' summaries.
 
@@ -35,6 +38,7 @@ use rayon::prelude::*;
 use toml::Value;
 
 use crate::atomic::{write_atomic, AtomicFile};
+use crate::out_lock::{LockError, OutputLock, LOCK_FILE};
 use crate::sampling::Design;
 use crate::summary_table::{parquet_properties, write_csv_rows, RowsBuilder, TableSchema};
 use crate::sweep_file::{InvalidRuns, SweepFile};
@@ -238,6 +242,14 @@ pub fn run_sweep_with(
         "chunk_size": sweep.chunk_size,
     });
 
+    // One sweep at a time in this folder, from here until this function returns.
+    let _lock = OutputLock::take(&out_dir).map_err(|e| match e {
+        LockError::Held => SweepError::Config(format!(
+            "{}: another cushion sweep is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another --out",
+            out_dir.display()
+        )),
+        LockError::Io(e) => io_err(out_dir.display(), e),
+    })?;
     if state_dir.exists() {
         let old: Option<serde_json::Value> = fs::read(state_dir.join("state.json"))
             .ok()

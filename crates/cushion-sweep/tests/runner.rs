@@ -154,3 +154,37 @@ fn final_files_do_not_depend_on_the_chunk_size() {
         assert!(f.0 == files[0].0 && f.1 == files[0].1);
     }
 }
+
+#[test]
+fn a_second_sweep_into_a_folder_in_use_is_refused_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = write_sweep(dir.path(), BODY);
+    let out = dir.path().join("o");
+    let opts = SweepOptions {
+        file: f,
+        out: Some(out.clone()),
+        threads: Some(1),
+        quiet: true,
+        ..Default::default()
+    };
+    // a sweep writing into `out` now: its lock, as a running sweep holds it
+    let running = cushion_sweep::out_lock::OutputLock::take(&out).unwrap();
+    let err = run_sweep_with(&opts, &simulate).unwrap_err();
+    assert_eq!(err.exit_code(), 2, "{err}");
+    let msg = err.to_string();
+    assert!(
+        msg.contains(&out.display().to_string()) && msg.contains("another cushion sweep"),
+        "{msg}"
+    );
+    let mut left: Vec<String> = fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, [cushion_sweep::out_lock::LOCK_FILE], "wrote into a folder in use");
+    // once it ends, the folder is free again
+    drop(running);
+    let o = run_sweep_with(&opts, &simulate).unwrap();
+    assert_eq!(o.runs_total, 20);
+    assert!(out.join("summary.csv").exists());
+}

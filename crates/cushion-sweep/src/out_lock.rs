@@ -1,0 +1,79 @@
+//! One sweep at a time per output folder.
+//!
+//! Two sweeps writing into the same folder would interleave their chunks and overwrite each
+//! other's summaries. A sweep therefore holds an advisory lock (`flock`) on `<out>/.sweep.lock`
+//! from before it reads or removes anything there until it returns. The operating system
+//! releases the lock when the process ends, however it ends, so a killed sweep leaves no stale
+//! lock behind and `--resume` can always continue it. The empty lock file itself stays: removing
+//! it would let a process that opened it just before the removal and one that creates a new one
+//! both hold "the" lock.
+
+use std::fs::{self, File, OpenOptions, TryLockError};
+use std::io;
+use std::path::Path;
+
+/// Name of the lock file inside the output folder.
+pub const LOCK_FILE: &str = ".sweep.lock";
+
+/// The lock on an output folder, released when dropped (or when the process ends).
+#[derive(Debug)]
+pub struct OutputLock {
+    _file: File,
+}
+
+/// Why the lock was not taken.
+#[derive(Debug)]
+pub enum LockError {
+    /// Another process holds it: a sweep is writing into the folder now.
+    Held,
+    /// The folder or the lock file could not be created, or locking failed.
+    Io(io::Error),
+}
+
+impl OutputLock {
+    /// Create `out_dir` if needed and take its lock without waiting.
+    pub fn take(out_dir: &Path) -> Result<OutputLock, LockError> {
+        fs::create_dir_all(out_dir).map_err(LockError::Io)?;
+        let file = OpenOptions::new()
+            .create(true)
+            .write(true)
+            .truncate(false)
+            .open(out_dir.join(LOCK_FILE))
+            .map_err(LockError::Io)?;
+        match file.try_lock() {
+            Ok(()) => Ok(OutputLock { _file: file }),
+            Err(TryLockError::WouldBlock) => Err(LockError::Held),
+            Err(TryLockError::Error(e)) => Err(LockError::Io(e)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn held_until_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("a").join("b");
+        let first = OutputLock::take(&out).unwrap();
+        assert!(out.join(LOCK_FILE).exists());
+        assert!(matches!(OutputLock::take(&out), Err(LockError::Held)));
+        drop(first);
+        let again = OutputLock::take(&out).unwrap();
+        // another folder is independent
+        let other = OutputLock::take(&dir.path().join("c")).unwrap();
+        drop((again, other));
+    }
+
+    #[test]
+    fn a_folder_that_cannot_be_made_is_an_io_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("f");
+        fs::write(&file, b"x").unwrap();
+        assert!(matches!(
+            OutputLock::take(&file.join("o")),
+            Err(LockError::Io(_))
+        ));
+    }
+}
