@@ -958,15 +958,20 @@ impl Model {
             .or(self.layout.contact_impulse)
             .unwrap_or(n)
             .min(MAX_DYNAMIC);
-        let node = |k: usize| {
+        // a node: the leading `dynamic` states (a fixed-length loop: no call to memcpy)
+        let lead = |yk: &State<N>| {
             let mut v = [0.0; MAX_DYNAMIC];
-            let yk = match k {
-                0 => *step.y0,
-                K => *step.y1,
-                _ => step.at(tk(k)),
-            };
-            v[..dynamic].copy_from_slice(&yk.as_slice()[..dynamic]);
+            for (j, vj) in v.iter_mut().enumerate().take(N.min(MAX_DYNAMIC)) {
+                if j < dynamic {
+                    *vj = yk[j];
+                }
+            }
             v
+        };
+        let node = |k: usize| match k {
+            0 => lead(step.y0),
+            K => lead(step.y1),
+            _ => lead(&step.at(tk(k))),
         };
         let mut fr_best = (0usize, 0.0f64);
         let mut fc_best = (0usize, 0.0f64);
@@ -1005,11 +1010,17 @@ impl Model {
         // The nodes of a new peak candidate, computed at most once per step (below).
         let mut nodes: Option<[[f64; MAX_DYNAMIC]; K + 1]> = None;
         if interior {
+            // the interior samples are the interior nodes
+            let mut v = [[0.0; MAX_DYNAMIC]; K + 1];
+            v[0] = lead(step.y0);
+            v[K] = lead(step.y1);
             for k in 1..K {
                 let yk = step.at(tk(k));
+                v[k] = lead(&yk);
                 let e = self.eval_inline(tk(k), yk.as_slice(), &seg, &r);
                 consider(k, &e);
             }
+            nodes = Some(v);
         }
         self.last_sample = Some((e1.f_r, e1.f_c, e1.s, e1.sd));
         if p1_best > self.metrics.max_p1 {
