@@ -1014,9 +1014,9 @@ impl Model {
             let mut v = [[0.0; MAX_DYNAMIC]; K + 1];
             v[0] = lead(step.y0);
             v[K] = lead(step.y1);
-            for k in 1..K {
+            for (k, vk) in v.iter_mut().enumerate().take(K).skip(1) {
                 let yk = step.at(tk(k));
-                v[k] = lead(&yk);
+                *vk = lead(&yk);
                 let e = self.eval_inline(tk(k), yk.as_slice(), &seg, &r);
                 consider(k, &e);
             }
