@@ -511,7 +511,10 @@ fn a_folder_another_sweep_is_writing_into_is_refused() {
     let o = cushion(&["sweep", s(&f), "--out", s(&out)]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
-    assert!(err.contains("another cushion sweep is writing into this folder"), "{err}");
+    assert!(
+        err.contains("another cushion sweep is writing into this folder"),
+        "{err}"
+    );
     assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
     assert_eq!(fs::read_dir(&out).unwrap().count(), 1, "only the lock file");
     drop(running);

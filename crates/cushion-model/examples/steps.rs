@@ -6,7 +6,9 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let path = args.next().expect("steps SCENE.toml [EDGE_MS]...");
     let scene = Scene::from_file(std::path::Path::new(&path)).expect("readable scene");
-    let mut edges: Vec<f64> = args.map(|a| a.parse::<f64>().expect("a time in ms") * 1e-3).collect();
+    let mut edges: Vec<f64> = args
+        .map(|a| a.parse::<f64>().expect("a time in ms") * 1e-3)
+        .collect();
     // steps and events only: every step end, plus a point per logged event
     let r = simulate(
         &scene,
@@ -21,9 +23,18 @@ fn main() {
         .find(|e| e.name == "early_end")
         .map_or(scene.t_end, |e| e.t);
     if edges.is_empty() {
-        edges = (1..).map(|k| k as f64 * 0.01).take_while(|&t| t < end).collect();
+        edges = (1..)
+            .map(|k| k as f64 * 0.01)
+            .take_while(|&t| t < end)
+            .collect();
     }
-    let mut ends: Vec<f64> = r.trajectory.expect("recorded").points.iter().map(|p| p.t).collect();
+    let mut ends: Vec<f64> = r
+        .trajectory
+        .expect("recorded")
+        .points
+        .iter()
+        .map(|p| p.t)
+        .collect();
     ends.retain(|&t| t > 0.0 && t <= end);
     ends.dedup(); // an event's point shares the time of the step it cut
     let mut lo = 0.0;

@@ -17,7 +17,6 @@
 //!   recorded) are assembled from the chunk files in run order, each written atomically
 //!   (temporary file, fsync, rename); then `sweep.toml` (a copy of the sweep file),
 //!   `provenance.json`, the report charts (`report-*.svg`), and `.sweep/` is removed.
-//!
 //! - throughout, the empty `DIR/.sweep.lock` is locked (`out_lock.rs`): a second sweep into
 //!   the same folder is refused (exit status 2) before it reads or writes anything there.
 //!

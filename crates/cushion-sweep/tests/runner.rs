@@ -181,7 +181,11 @@ fn a_second_sweep_into_a_folder_in_use_is_refused_and_writes_nothing() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     left.sort();
-    assert_eq!(left, [cushion_sweep::out_lock::LOCK_FILE], "wrote into a folder in use");
+    assert_eq!(
+        left,
+        [cushion_sweep::out_lock::LOCK_FILE],
+        "wrote into a folder in use"
+    );
     // once it ends, the folder is free again
     drop(running);
     let o = run_sweep_with(&opts, &simulate).unwrap();
