@@ -512,7 +512,7 @@ fn a_folder_another_sweep_is_writing_into_is_refused() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(
-        err.contains("another cushion sweep is writing into this folder"),
+        err.contains("another cushion sweep or merge is writing into this folder"),
         "{err}"
     );
     assert_eq!(err.trim_end().lines().count(), 1, "one message: {err}");
@@ -520,6 +520,48 @@ fn a_folder_another_sweep_is_writing_into_is_refused() {
     drop(running);
     ok(&cushion(&["sweep", s(&f), "--out", s(&out), "--quiet"]));
     assert!(out.join("summary.parquet").exists());
+}
+
+#[test]
+fn a_merge_into_a_folder_in_use_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = "[set]\nt_end = 0.05\n[[axis]]\nkey = \"robot.dead_time\"\nvalues = [0.01, 0.02]\n";
+    let f = sweep_file(dir.path(), "two", body);
+    let shards: Vec<PathBuf> = (1..=2).map(|k| dir.path().join(format!("s{k}"))).collect();
+    for (k, d) in shards.iter().enumerate() {
+        let spec = format!("{}/2", k + 1);
+        ok(&cushion(&[
+            "sweep",
+            s(&f),
+            "--out",
+            s(d),
+            "--shard",
+            &spec,
+            "--quiet",
+        ]));
+    }
+    let merged = dir.path().join("merged");
+    let running = cushion_sweep::out_lock::OutputLock::take(&merged).unwrap();
+    let args = [
+        "merge",
+        s(&shards[0]),
+        s(&shards[1]),
+        "--out",
+        s(&merged),
+        "--quiet",
+    ];
+    let o = cushion(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("is writing into this folder"), "{err}");
+    assert_eq!(
+        fs::read_dir(&merged).unwrap().count(),
+        1,
+        "only the lock file"
+    );
+    drop(running);
+    ok(&cushion(&args));
+    assert_eq!(runs_of(&merged.join("summary.parquet")), [0, 1]);
 }
 
 #[test]

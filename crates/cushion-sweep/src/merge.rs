@@ -16,6 +16,7 @@ use arrow_array::{Array, Int64Array, RecordBatch};
 use arrow_schema::SchemaRef;
 
 use crate::atomic::{write_atomic, AtomicFile};
+use crate::out_lock::OutputLock;
 use crate::runner::{read_parquet, SweepError};
 use crate::summary_table::{csv_text, parquet_properties, write_csv_rows};
 
@@ -165,7 +166,8 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             )));
         }
     }
-    fs::create_dir_all(&out_dir).map_err(|e| io(out_dir.display(), e))?;
+    // One sweep or merge at a time in this folder, until this function returns.
+    let _lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
 
     // Summaries: a k-way merge by run number, streaming.
     let mut readers = Vec::new();

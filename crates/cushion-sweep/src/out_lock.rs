@@ -1,8 +1,9 @@
-//! One sweep at a time per output folder.
+//! One sweep (or merge) at a time per output folder.
 //!
 //! Two sweeps writing into the same folder would interleave their chunks and overwrite each
-//! other's summaries. A sweep therefore holds an advisory lock (`flock`) on `<out>/.sweep.lock`
-//! from before it reads or removes anything there until it returns. The operating system
+//! other's summaries. `cushion sweep` and `cushion merge` therefore hold an advisory lock
+//! (`flock`) on `<out>/.sweep.lock` from before they read or remove anything there until they
+//! return. The operating system
 //! releases the lock when the process ends, however it ends, so a killed sweep leaves no stale
 //! lock behind and `--resume` can always continue it. The empty lock file itself stays: removing
 //! it would let a process that opened it just before the removal and one that creates a new one
@@ -11,6 +12,8 @@
 use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io;
 use std::path::Path;
+
+use crate::runner::SweepError;
 
 /// Name of the lock file inside the output folder.
 pub const LOCK_FILE: &str = ".sweep.lock";
@@ -44,6 +47,20 @@ impl OutputLock {
             Ok(()) => Ok(OutputLock { _file: file }),
             Err(TryLockError::WouldBlock) => Err(LockError::Held),
             Err(TryLockError::Error(e)) => Err(LockError::Io(e)),
+        }
+    }
+}
+
+impl LockError {
+    /// What the command reports: a usage error (exit status 2) naming the folder when another
+    /// process holds the lock, an I/O error (exit status 1) otherwise.
+    pub fn into_sweep_error(self, out_dir: &Path) -> SweepError {
+        match self {
+            LockError::Held => SweepError::Config(format!(
+                "{}: another cushion sweep or merge is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another --out",
+                out_dir.display()
+            )),
+            LockError::Io(e) => SweepError::Io(format!("{}: {e}", out_dir.display())),
         }
     }
 }

@@ -37,7 +37,7 @@ use rayon::prelude::*;
 use toml::Value;
 
 use crate::atomic::{write_atomic, AtomicFile};
-use crate::out_lock::{LockError, OutputLock, LOCK_FILE};
+use crate::out_lock::OutputLock;
 use crate::sampling::Design;
 use crate::summary_table::{parquet_properties, write_csv_rows, RowsBuilder, TableSchema};
 use crate::sweep_file::{InvalidRuns, SweepFile};
@@ -242,13 +242,7 @@ pub fn run_sweep_with(
     });
 
     // One sweep at a time in this folder, from here until this function returns.
-    let _lock = OutputLock::take(&out_dir).map_err(|e| match e {
-        LockError::Held => SweepError::Config(format!(
-            "{}: another cushion sweep is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another --out",
-            out_dir.display()
-        )),
-        LockError::Io(e) => io_err(out_dir.display(), e),
-    })?;
+    let _lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
     if state_dir.exists() {
         let old: Option<serde_json::Value> = fs::read(state_dir.join("state.json"))
             .ok()
