@@ -167,7 +167,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         }
     }
     // One sweep or merge at a time in this folder, until this function returns.
-    let _lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    if let Some(w) = lock.warning("cushion merge", &out_dir) {
+        eprintln!("{w}");
+    }
 
     // Summaries: a k-way merge by run number, streaming.
     let mut readers = Vec::new();

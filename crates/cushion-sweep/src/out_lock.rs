@@ -3,11 +3,14 @@
 //! Two sweeps writing into the same folder would interleave their chunks and overwrite each
 //! other's summaries. `cushion sweep` and `cushion merge` therefore hold an advisory lock
 //! (`flock`) on `<out>/.sweep.lock` from before they read or remove anything there until they
-//! return. The operating system
-//! releases the lock when the process ends, however it ends, so a killed sweep leaves no stale
-//! lock behind and `--resume` can always continue it. The empty lock file itself stays: removing
-//! it would let a process that opened it just before the removal and one that creates a new one
-//! both hold "the" lock.
+//! return. The operating system releases the lock when the process ends, however it ends, so a
+//! killed sweep leaves no stale lock behind and `--resume` can always continue it. The empty
+//! lock file itself stays: removing it would let a process that opened it just before the
+//! removal and one that creates a new one both hold "the" lock.
+//!
+//! The lock is a safety net, not a requirement: on a file system that cannot lock (some network
+//! and FUSE mounts answer `flock` with "not supported" or "no locks available") the command
+//! goes on unprotected, with a warning.
 
 use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io;
@@ -22,6 +25,8 @@ pub const LOCK_FILE: &str = ".sweep.lock";
 #[derive(Debug)]
 pub struct OutputLock {
     _file: File,
+    /// Why the folder could not be locked, when it could not (the command goes on).
+    not_locked: Option<io::Error>,
 }
 
 /// Why the lock was not taken.
@@ -29,7 +34,7 @@ pub struct OutputLock {
 pub enum LockError {
     /// Another process holds it: a sweep is writing into the folder now.
     Held,
-    /// The folder or the lock file could not be created, or locking failed.
+    /// The folder or the lock file could not be created.
     Io(io::Error),
 }
 
@@ -43,11 +48,34 @@ impl OutputLock {
             .truncate(false)
             .open(out_dir.join(LOCK_FILE))
             .map_err(LockError::Io)?;
-        match file.try_lock() {
-            Ok(()) => Ok(OutputLock { _file: file }),
+        let locked = file.try_lock();
+        Self::from_attempt(file, locked)
+    }
+
+    /// The outcome of an attempt to lock `file`.
+    fn from_attempt(file: File, locked: Result<(), TryLockError>) -> Result<OutputLock, LockError> {
+        match locked {
+            Ok(()) => Ok(OutputLock {
+                _file: file,
+                not_locked: None,
+            }),
             Err(TryLockError::WouldBlock) => Err(LockError::Held),
-            Err(TryLockError::Error(e)) => Err(LockError::Io(e)),
+            Err(TryLockError::Error(e)) => Ok(OutputLock {
+                _file: file,
+                not_locked: Some(e),
+            }),
         }
+    }
+
+    /// The warning for `command` (`cushion sweep`, `cushion merge`) when the folder could not
+    /// be locked.
+    pub fn warning(&self, command: &str, out_dir: &Path) -> Option<String> {
+        self.not_locked.as_ref().map(|e| {
+            format!(
+                "{command}: warning: {}: cannot lock {LOCK_FILE} ({e}); nothing keeps a second sweep out of this folder",
+                out_dir.display()
+            )
+        })
     }
 }
 
@@ -81,6 +109,26 @@ mod tests {
         // another folder is independent
         let other = OutputLock::take(&dir.path().join("c")).unwrap();
         drop((again, other));
+    }
+
+    #[test]
+    fn a_file_system_that_cannot_lock_gives_a_warning_not_an_error() {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path();
+        let file = File::create(out.join(LOCK_FILE)).unwrap();
+        let unsupported = io::Error::from(io::ErrorKind::Unsupported);
+        let lock = OutputLock::from_attempt(file, Err(TryLockError::Error(unsupported))).unwrap();
+        let w = lock.warning("cushion sweep", out).unwrap();
+        assert!(
+            w.starts_with("cushion sweep: warning: ") && w.contains("cannot lock"),
+            "{w}"
+        );
+        // a lock taken for real warns of nothing
+        drop(lock);
+        assert_eq!(
+            OutputLock::take(out).unwrap().warning("cushion sweep", out),
+            None
+        );
     }
 
     #[test]

@@ -242,7 +242,10 @@ pub fn run_sweep_with(
     });
 
     // One sweep at a time in this folder, from here until this function returns.
-    let _lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    if let Some(w) = lock.warning("cushion sweep", &out_dir) {
+        eprintln!("{w}");
+    }
     if state_dir.exists() {
         let old: Option<serde_json::Value> = fs::read(state_dir.join("state.json"))
             .ok()
