@@ -70,6 +70,26 @@ values = ["hydraulic", "bistable"]
 chunk_size = 4
 "#;
 
+/// Run the sweep file `f` as `n` shards into `dir/s1`...`dir/sn`; their folders, in order.
+fn run_shards(f: &Path, dir: &Path, n: usize) -> Vec<PathBuf> {
+    (1..=n)
+        .map(|k| {
+            let d = dir.join(format!("s{k}"));
+            let spec = format!("{k}/{n}");
+            ok(&cushion(&[
+                "sweep",
+                s(f),
+                "--out",
+                s(&d),
+                "--shard",
+                &spec,
+                "--quiet",
+            ]));
+            d
+        })
+        .collect()
+}
+
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
@@ -331,18 +351,8 @@ fn union_of_shards_equals_the_whole() {
     let f = sweep_file(dir.path(), "small", &body);
     let whole = dir.path().join("whole");
     ok(&cushion(&["sweep", s(&f), "--out", s(&whole), "--quiet"]));
-    let shards: Vec<PathBuf> = (1..=3).map(|k| dir.path().join(format!("s{k}"))).collect();
+    let shards = run_shards(&f, dir.path(), 3);
     for (k, d) in shards.iter().enumerate() {
-        let spec = format!("{}/3", k + 1);
-        ok(&cushion(&[
-            "sweep",
-            s(&f),
-            "--out",
-            s(d),
-            "--shard",
-            &spec,
-            "--quiet",
-        ]));
         let runs = runs_of(&d.join("summary.parquet"));
         assert_eq!(
             runs,
@@ -527,19 +537,7 @@ fn a_merge_into_a_folder_in_use_is_refused() {
     let dir = tempfile::tempdir().unwrap();
     let body = "[set]\nt_end = 0.05\n[[axis]]\nkey = \"robot.dead_time\"\nvalues = [0.01, 0.02]\n";
     let f = sweep_file(dir.path(), "two", body);
-    let shards: Vec<PathBuf> = (1..=2).map(|k| dir.path().join(format!("s{k}"))).collect();
-    for (k, d) in shards.iter().enumerate() {
-        let spec = format!("{}/2", k + 1);
-        ok(&cushion(&[
-            "sweep",
-            s(&f),
-            "--out",
-            s(d),
-            "--shard",
-            &spec,
-            "--quiet",
-        ]));
-    }
+    let shards = run_shards(&f, dir.path(), 2);
     let merged = dir.path().join("merged");
     let running = cushion_sweep::out_lock::OutputLock::take(&merged).unwrap();
     let args = [
