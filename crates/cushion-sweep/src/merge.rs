@@ -17,7 +17,7 @@ use arrow_schema::SchemaRef;
 
 use crate::atomic::{write_atomic, AtomicFile};
 use crate::out_lock::OutputLock;
-use crate::runner::{read_parquet, SweepError};
+use crate::runner::{io_err, read_parquet, SweepError};
 use crate::summary_table::{csv_text, parquet_properties, write_csv_rows};
 
 /// What `cushion merge` was asked.
@@ -78,10 +78,6 @@ impl ChannelMap {
 
 fn cfg(msg: String) -> SweepError {
     SweepError::Config(msg)
-}
-
-fn io(what: impl std::fmt::Display, e: impl std::fmt::Display) -> SweepError {
-    SweepError::Io(format!("{what}: {e}"))
 }
 
 struct Shard {
@@ -194,18 +190,18 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     }
     let Some(schema) = schema.or_else(|| read_schema(&shards[0].dir.join("summary.parquet")))
     else {
-        return Err(io("summary.parquet", "no schema"));
+        return Err(io_err("summary.parquet", "no schema"));
     };
 
     let csv_path = out_dir.join("summary.csv");
-    let mut csv = AtomicFile::create(&csv_path).map_err(|e| io(csv_path.display(), e))?;
+    let mut csv = AtomicFile::create(&csv_path).map_err(|e| io_err(csv_path.display(), e))?;
     let header: Vec<String> = schema.fields().iter().map(|f| csv_text(f.name())).collect();
-    writeln!(csv.writer(), "{}", header.join(",")).map_err(|e| io(csv_path.display(), e))?;
+    writeln!(csv.writer(), "{}", header.join(",")).map_err(|e| io_err(csv_path.display(), e))?;
     let pq_path = out_dir.join("summary.parquet");
-    let mut pq = AtomicFile::create(&pq_path).map_err(|e| io(pq_path.display(), e))?;
+    let mut pq = AtomicFile::create(&pq_path).map_err(|e| io_err(pq_path.display(), e))?;
     let mut writer =
         parquet::arrow::ArrowWriter::try_new(pq.take(), schema.clone(), Some(parquet_properties()))
-            .map_err(|e| io(pq_path.display(), e))?;
+            .map_err(|e| io_err(pq_path.display(), e))?;
 
     struct Cursor {
         batch: Option<RecordBatch>,
@@ -231,7 +227,7 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     let runs_of = |b: &RecordBatch| -> Result<Int64Array, SweepError> {
         b.column_by_name("run")
             .and_then(|c| c.as_any().downcast_ref::<Int64Array>().cloned())
-            .ok_or_else(|| io("summary.parquet", "no `run` column"))
+            .ok_or_else(|| io_err("summary.parquet", "no `run` column"))
     };
     for r in readers.iter_mut() {
         let b = load(r)?;
@@ -261,10 +257,12 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         }
         let refs: Vec<&RecordBatch> = slots.iter().collect();
         let out = arrow_select::interleave::interleave_record_batch(&refs, picks)
-            .map_err(|e| io("merge", e))?;
+            .map_err(|e| io_err("merge", e))?;
         *failed += crate::runner::count_failed_batch(&out);
-        write_csv_rows(csv.writer(), &out).map_err(|e| io(csv_path.display(), e))?;
-        writer.write(&out).map_err(|e| io(pq_path.display(), e))?;
+        write_csv_rows(csv.writer(), &out).map_err(|e| io_err(csv_path.display(), e))?;
+        writer
+            .write(&out)
+            .map_err(|e| io_err(pq_path.display(), e))?;
         Ok(())
     };
     loop {
@@ -315,9 +313,12 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             "the shards hold {count} runs, the sweep has {n_runs}: a shard is incomplete"
         )));
     }
-    let w = writer.into_inner().map_err(|e| io(pq_path.display(), e))?;
-    pq.commit_with(w).map_err(|e| io(pq_path.display(), e))?;
-    csv.commit().map_err(|e| io(csv_path.display(), e))?;
+    let w = writer
+        .into_inner()
+        .map_err(|e| io_err(pq_path.display(), e))?;
+    pq.commit_with(w)
+        .map_err(|e| io_err(pq_path.display(), e))?;
+    csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
 
     // Trajectories, merged by run number.
     let traj_path = out_dir.join("trajectories.mcap");
@@ -325,11 +326,11 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         .iter()
         .map(|s| s.dir.join("trajectories.mcap"))
         .filter(|p| p.exists())
-        .map(|p| fs::read(&p).map_err(|e| io(p.display(), e)))
+        .map(|p| fs::read(&p).map_err(|e| io_err(p.display(), e)))
         .collect::<Result<_, _>>()?;
     if files.is_empty() {
         if traj_path.exists() {
-            fs::remove_file(&traj_path).map_err(|e| io(traj_path.display(), e))?;
+            fs::remove_file(&traj_path).map_err(|e| io_err(traj_path.display(), e))?;
         }
     } else {
         merge_mcap(&traj_path, &files)?;
@@ -337,7 +338,8 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
 
     let sweep_copy = shards[0].dir.join("sweep.toml");
     if let Ok(text) = fs::read(&sweep_copy) {
-        write_atomic(&out_dir.join("sweep.toml"), &text).map_err(|e| io(out_dir.display(), e))?;
+        write_atomic(&out_dir.join("sweep.toml"), &text)
+            .map_err(|e| io_err(out_dir.display(), e))?;
     }
     let mut prov = first.clone();
     let wall: f64 = shards
@@ -369,7 +371,7 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             .unwrap_or_default()
             .as_bytes(),
     )
-    .map_err(|e| io(out_dir.display(), e))?;
+    .map_err(|e| io_err(out_dir.display(), e))?;
     if let Err(e) = crate::report::write_report(&out_dir) {
         eprintln!("cushion merge: warning: report charts not written: {e}");
     }
@@ -405,14 +407,14 @@ fn topic_run(topic: &str) -> u64 {
 fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
     let mut streams = Vec::new();
     for bytes in files {
-        let s = mcap::MessageStream::new(bytes).map_err(|e| io(path.display(), e))?;
+        let s = mcap::MessageStream::new(bytes).map_err(|e| io_err(path.display(), e))?;
         streams.push(s.peekable());
     }
-    let mut f = AtomicFile::create(path).map_err(|e| io(path.display(), e))?;
+    let mut f = AtomicFile::create(path).map_err(|e| io_err(path.display(), e))?;
     {
         let mut w = crate::trajectory_mcap::write_options()
             .create(f.writer())
-            .map_err(|e| io(path.display(), e))?;
+            .map_err(|e| io_err(path.display(), e))?;
         let mut channels = ChannelMap::default();
         loop {
             let mut best: Option<(usize, u64)> = None;
@@ -426,7 +428,7 @@ fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
                     }
                     Some(Err(_)) => {
                         if let Some(Err(e)) = s.next() {
-                            return Err(io(path.display(), e));
+                            return Err(io_err(path.display(), e));
                         }
                     }
                     None => {}
@@ -441,13 +443,13 @@ fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
                 let m = streams[i]
                     .next()
                     .expect("peeked")
-                    .map_err(|e| io(path.display(), e))?;
+                    .map_err(|e| io_err(path.display(), e))?;
                 channels
                     .copy(&mut w, &m)
-                    .map_err(|e| io(path.display(), e))?;
+                    .map_err(|e| io_err(path.display(), e))?;
             }
         }
-        w.finish().map_err(|e| io(path.display(), e))?;
+        w.finish().map_err(|e| io_err(path.display(), e))?;
     }
-    f.commit().map_err(|e| io(path.display(), e))
+    f.commit().map_err(|e| io_err(path.display(), e))
 }

@@ -16,7 +16,7 @@ use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io;
 use std::path::Path;
 
-use crate::runner::SweepError;
+use crate::runner::{io_err, SweepError};
 
 /// Name of the lock file inside the output folder.
 pub const LOCK_FILE: &str = ".sweep.lock";
@@ -88,7 +88,7 @@ impl LockError {
                 "{}: another cushion sweep or merge is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another --out",
                 out_dir.display()
             )),
-            LockError::Io(e) => SweepError::Io(format!("{}: {e}", out_dir.display())),
+            LockError::Io(e) => io_err(out_dir.display(), e),
         }
     }
 }

@@ -88,7 +88,8 @@ impl SweepError {
     }
 }
 
-fn io_err(what: impl std::fmt::Display, e: impl std::fmt::Display) -> SweepError {
+/// An I/O error (exit status 1) about `what`: `"{what}: {e}"`.
+pub(crate) fn io_err(what: impl std::fmt::Display, e: impl std::fmt::Display) -> SweepError {
     SweepError::Io(format!("{what}: {e}"))
 }
 
