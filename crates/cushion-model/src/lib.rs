@@ -33,9 +33,12 @@
 //!   tool can only push).
 //! - **Robot impulse** `int F_r dt` follows exactly from momentum
 //!   (`-(m_t dv_t + m_p dv_p)`; with plane friction a quadrature of `F_c` replaces `m_p dv_p`).
-//! - **Peaks** (`|F_r|`, `F_c`, stroke) are sampled at four points of each step's dense output
-//!   and refined once per run inside the step that holds the largest sample (golden-section
-//!   search on the dense polynomial). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
+//! - **Peaks** (`|F_r|`, `F_c`, stroke) are sampled at each step's end, and at three interior
+//!   points of its dense output where a new peak is possible (an end value above half the
+//!   peak so far, the stroke turning, the steps right after an event); they are refined once
+//!   per run by Brent's search inside the step that holds the largest sample, and the next one
+//!   when that sample is the step's end (`peaks.rs`). `max_gas_pressure = p1(max_stroke)`
+//!   (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
 //!   the tolerance (tested).
 //! - **Ringing tail** (`solver.ringing_tail`, with early end): once only the tool's small ringing

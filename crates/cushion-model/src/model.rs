@@ -23,8 +23,8 @@
 //! stops. The position and speed events tell the integrator how far they can stray inside a
 //! step (`event_chord_bound`), so quiet steps are not sampled inside.
 //!
-//! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at four points of every step's dense output;
-//! the step holding the largest sample keeps five nodes of its dense output (a degree-4
+//! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at every step's end, and at three interior
+//! points of its dense output where a new peak is possible (`observe_step`); the step holding the largest sample keeps five nodes of its dense output (a degree-4
 //! polynomial, so they reproduce it exactly) and the peak inside it (or just after it, in the
 //! next step, when the largest sample is the step's end) is located once, at the end of the run,
 //! by Brent's search (`peaks.rs`).
@@ -1012,8 +1012,8 @@ impl Model {
         if interior {
             // the interior samples are the interior nodes
             let mut v = [[0.0; MAX_DYNAMIC]; K + 1];
-            v[0] = lead(step.y0);
-            v[K] = lead(step.y1);
+            v[0] = node(0);
+            v[K] = node(K);
             for (k, vk) in v.iter_mut().enumerate().take(K).skip(1) {
                 let yk = step.at(tk(k));
                 *vk = lead(&yk);
