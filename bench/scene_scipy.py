@@ -9,10 +9,13 @@ right-hand side (no contact events: the plain way a SciPy user writes it); the s
 terminal event, and the robot's kinks are segment boundaries (sensor -> brake -> stop -> t_end),
 so the integrator never steps across them.
 
-    .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S]
+    .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S] [--method M]
 
-Prints time per run, right-hand-side evaluations, and the results to compare with
+Prints time per run, right-hand-side evaluations, steps per segment of the robot's profile, and
+the results to compare with
 `cargo run -p cushion-model --example run_scene -- sweeps/scenes/paper-hydraulic-dt70.toml`.
+`--method` takes any `solve_ivp` method (RK45, DOP853, Radau, BDF, LSODA): the implicit ones
+show whether this scene is stiff enough for an implicit method to take fewer steps.
 """
 
 import argparse
@@ -66,10 +69,12 @@ def make_rhs(robot):
     return rhs
 
 
-def run(dead_time):
+def run(dead_time, method="RK45"):
+    """One run: (t_detect, final state, rhs evaluations, x_p0, accepted steps per segment)."""
     s0 = -brentq(lambda d: K_E * d**1.5 - gas(-d) * A_P, 0.0, 1e-2, xtol=1e-16, rtol=1e-15)
     y = np.array([-s0, V_MAX, -s0 + GAP, 0.0])
     nfev = 0
+    steps = []
 
     # Segment 1: cruising until the sensor switches (terminal event).
     def sensor(t, y):
@@ -78,8 +83,9 @@ def run(dead_time):
     sensor.terminal = True
     sensor.direction = 1
     cruise = lambda t: (V_MAX * t, V_MAX)
-    sol = solve_ivp(make_rhs(cruise), (0.0, T_END), y, method="RK45", rtol=RTOL, atol=ATOL, events=sensor)
+    sol = solve_ivp(make_rhs(cruise), (0.0, T_END), y, method=method, rtol=RTOL, atol=ATOL, events=sensor)
     nfev += sol.nfev
+    steps.append(len(sol.t) - 1)
     t_detect = sol.t[-1]
     y = sol.y[:, -1]
     t_brake = t_detect + dead_time
@@ -93,27 +99,30 @@ def run(dead_time):
         a, b = min(a, T_END), min(b, T_END)
         if b <= a:
             continue
-        sol = solve_ivp(make_rhs(robot), (a, b), y, method="RK45", rtol=RTOL, atol=ATOL)
+        sol = solve_ivp(make_rhs(robot), (a, b), y, method=method, rtol=RTOL, atol=ATOL)
         nfev += sol.nfev
+        steps.append(len(sol.t) - 1)
         y = sol.y[:, -1]
-    return t_detect, y, nfev, -s0 + GAP
+    return t_detect, y, nfev, -s0 + GAP, steps
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--dead-time", type=float, default=0.070)
+    ap.add_argument("--method", default="RK45", help="a solve_ivp method (default RK45)")
     args = ap.parse_args()
-    run(args.dead_time)  # warm up
+    run(args.dead_time, args.method)  # warm up
     times = []
     for _ in range(args.runs):
         t0 = time.perf_counter()
-        t_detect, y, nfev, x_p0 = run(args.dead_time)
+        t_detect, y, nfev, x_p0, steps = run(args.dead_time, args.method)
         times.append(time.perf_counter() - t0)
     times.sort()
-    print(f"scipy solve_ivp RK45, rtol {RTOL:g}, atol {ATOL:g}, hydraulic paper scene, dead time {args.dead_time:g} s")
+    print(f"scipy solve_ivp {args.method}, rtol {RTOL:g}, atol {ATOL:g}, hydraulic paper scene, dead time {args.dead_time:g} s")
     print(f"time per run (median of {args.runs}): {times[len(times) // 2] * 1e3:.1f} ms")
     print(f"rhs evaluations: {nfev}")
+    print(f"steps: {sum(steps)} (impact to detection {steps[0]}, to the brake {steps[1]}, braking {steps[2]}, standing {steps[3] if len(steps) > 3 else 0})")
     print(f"t_detect: {t_detect:.9f} s")
     print(f"object final velocity: {y[3]:.9f} m/s")
     print(f"object travel: {y[2] - x_p0:.9f} m")
