@@ -86,6 +86,7 @@ pub mod config;
 pub mod model;
 mod peaks;
 pub mod physics;
+mod resting;
 mod ringing;
 mod ringing_tail;
 pub mod simulate;

@@ -31,7 +31,7 @@
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};
-use crate::physics::{self, RobotProfile, Segment, GRAVITY};
+use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
 
@@ -304,6 +304,11 @@ pub struct Model {
     pub(crate) t_end: f64,
     settle_v: f64,
     settle_a: f64,
+    /// The solver's tolerances (for the tool's rest while the robot cruises, `resting.rs`).
+    pub(crate) atol: f64,
+    pub(crate) rtol: f64,
+    /// The stroke the tool rests at after a settled early end while the robot cruises (m).
+    pub(crate) rest_stroke: Option<f64>,
     /// The initial state (the preload equilibrium), in the order of `layout`.
     pub y0: Vec<f64>,
 }
@@ -474,6 +479,9 @@ impl Model {
             t_end: scene.t_end,
             settle_v: 100.0 * atol,
             settle_a: 1000.0 * atol,
+            atol,
+            rtol: scene.solver.rtol,
+            rest_stroke: None,
             y0: Vec::new(),
         };
         // Dry friction: the tool starts stuck if friction can hold it.
@@ -870,40 +878,60 @@ impl Model {
         }
     }
 
-    /// Whether nothing can change any more after `(t, y)`: the robot stands, the tool has
-    /// settled (stuck, or relative speed and acceleration at the tolerance's level) and the
-    /// object is out of contact and either stuck on the plane or free and not slower than the
-    /// tool. Then the run may end early with its final values extrapolated exactly. Failing
-    /// that, the run may still end if only the tool's small ringing on its stop is left, written
-    /// in closed form (`ringing_tail.rs`).
+    /// Whether nothing can change any more after `(t, y)`: the robot stands, or cruises with no
+    /// brake before `t_end` (its sensor never switched, or the dead time ends after the run); the
+    /// tool has settled (robot standing: stuck, or relative speed and acceleration at the
+    /// tolerance's level; robot cruising: stuck short of the sensor, or at rest on its stop,
+    /// `resting.rs`); and the object is out of contact and either free and not slower than the
+    /// tool or, with the robot standing, stuck on the plane. Then the run may end early
+    /// with its final values extrapolated exactly. Failing that, the run may still end if only
+    /// the tool's small ringing on its stop is left, written in closed form
+    /// (`ringing_tail.rs`).
     fn can_end_early(&mut self, t: f64, y: &[f64]) -> bool {
+        let stopped = self.robot.stopped();
         if !(self.early_end_enabled
             && t < self.t_end
-            && self.robot.stopped()
+            && (stopped || self.cruising_to_end())
             && !self.regime.obj_contact)
         {
             return t < self.t_end && self.try_ringing_tail(t, y);
         }
         let seg = *self.robot.current();
         let e = self.eval(t, y, &seg, &self.regime);
-        let tool_settled = match self.layout.tool {
-            None => true,
-            Some(_) => {
-                self.regime.tool_stuck
-                    || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
-            }
-        };
         let object_done = match self.layout.object {
             None => true,
             Some(_) => {
                 if self.p.mu_n > 0.0 {
-                    self.regime.obj_stuck
+                    // a cruising robot reaches a stuck object again
+                    stopped && self.regime.obj_stuck
                 } else {
                     e.v_p >= e.v_t.max(0.0)
                 }
             }
         };
+        let tool_settled = match self.layout.tool {
+            None => true,
+            Some(_) if stopped => {
+                self.regime.tool_stuck
+                    || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
+            }
+            // the robot cruises on: stuck short of the sensor, or at rest on a stop
+            Some(_) if self.regime.tool_stuck => self.regime.detected || e.s < self.p.s_sensor,
+            Some(_) => {
+                object_done && {
+                    self.rest_stroke = self.rest_on_stop(t, y, &seg, &e);
+                    self.rest_stroke.is_some()
+                }
+            }
+        };
         (tool_settled && object_done) || self.try_ringing_tail(t, y)
+    }
+
+    /// The robot cruises and will not brake before `t_end`: its sensor has not switched (it may
+    /// yet), or the dead time ends after the run.
+    pub(crate) fn cruising_to_end(&self) -> bool {
+        self.robot.current().phase == Phase::Cruising
+            && self.pending_brake.is_none_or(|tb| tb >= self.t_end)
     }
 
     /// Refine the peaks of `|F_r|`, `F_c` and `s` inside the steps that hold their largest

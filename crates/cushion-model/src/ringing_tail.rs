@@ -4,8 +4,9 @@
 //! damped (paper scene: ~78 Hz, damping ratio ~0.07), until `t_end`. An explicit method follows
 //! each period with ~15 steps: 300 of the paper scene's 360 steps. Once
 //!
-//! - the robot brakes, stands, or cruises toward a brake already scheduled (its motion to
-//!   `t_end` is known),
+//! - the robot brakes, stands, cruises toward a brake already scheduled, or cruises on with no
+//!   brake before `t_end` (its motion to `t_end` is known; the sensor, if it has not switched,
+//!   stays out of the ringing's reach),
 //! - the object can never be touched again (absent; or out of contact, free, at least as fast as
 //!   the robot and ahead of anything the tool can reach; or resting on the plane out of reach),
 //! - the tool is held by exactly one stop, without dry friction, and rings about that robot
@@ -137,7 +138,7 @@ impl Model {
     /// segment of acceleration `a_r`. They depend on `a_r` and on which stop holds the tool only
     /// (the force law does not depend on time), so they are computed once and kept; `s` is
     /// where Newton starts.
-    fn linearisation(
+    pub(crate) fn linearisation(
         &mut self,
         t: f64,
         y: &[f64],
@@ -301,7 +302,9 @@ impl Model {
             && !r.cavitating
             && !r.obj_contact
             && (r.fwd != r.back)
-            && (matches!(seg.phase, Phase::Braking | Phase::Stopped) || cruising_to_brake);
+            && (matches!(seg.phase, Phase::Braking | Phase::Stopped)
+                || cruising_to_brake
+                || self.cruising_to_end());
         if !quiet {
             return false;
         }
@@ -425,6 +428,10 @@ impl Model {
             if !(reach < 0.5 * depth) || !(pc.s_eq + reach < m.max_stroke) {
                 return false;
             }
+            // a robot that cruises on may still have its sensor to switch
+            if !self.regime.detected && !(pc.s_eq + reach < p.s_sensor) {
+                return false;
+            }
             // |F_r| = |G| = |m a_r + K1 u + ...| (no object contact)
             let w0 = pc.ring.w0;
             let f_bound =
@@ -461,7 +468,8 @@ impl Model {
 
 impl Model {
     /// The state at `t` after an early end at `(te, y_te)`: the object in free flight (or at rest),
-    /// the tool ringing in closed form (or at rest); the ledger's states as at `te`.
+    /// the tool ringing in closed form, or settled (at rest, or riding with the cruising robot on
+    /// its stop or stuck); the ledger's states as at `te`.
     pub(crate) fn extrapolated(&self, te: f64, y_te: &[f64], t: f64) -> Vec<f64> {
         let mut y = y_te.to_vec();
         let l = self.layout;
@@ -475,6 +483,17 @@ impl Model {
             let (x_r, v_r, _) = self.robot.segment_at(t).at(t);
             y[i] = x_r - s;
             y[i + 1] = v_r - sd;
+        } else if let (Some(i), Phase::Cruising) = (l.tool, self.robot.segment_at(te).phase) {
+            // settled while the robot cruises on: the tool rides with it, at rest on its stop
+            // (`resting.rs`) or stuck at its stroke
+            let (x_r, v_r, _) = self.robot.segment_at(t).at(t);
+            match self.rest_stroke {
+                Some(s_eq) => {
+                    y[i] = x_r - s_eq;
+                    y[i + 1] = v_r;
+                }
+                None => y[i] += x_r - self.robot.segment_at(te).at(te).0,
+            }
         }
         y
     }

@@ -171,9 +171,14 @@ fn newton_third_law_rigid() {
 #[test]
 fn preload_equilibrium_holds_still() {
     for module in ["hydraulic", "bistable"] {
+        // integrated to t_end (an early end would take over at once: nothing happens)
         let s = with(
             Scene::default(),
-            &[("module", module), ("object.enabled", "false")],
+            &[
+                ("module", module),
+                ("object.enabled", "false"),
+                ("solver.early_end", "false"),
+            ],
         );
         let r = run_traj(&tight(s), 1e-3);
         let pts = &r.trajectory.unwrap().points;
@@ -521,6 +526,123 @@ fn early_end_equals_running_to_t_end() {
         ));
         assert_eq!(early.summary.t_brake, full.summary.t_brake);
     }
+}
+
+#[test]
+fn early_end_while_the_robot_cruises_on() {
+    // The robot never brakes inside the run: its sensor never switches (a gas preload too strong
+    // for the object to press the tool in, or nothing to hit), or the dead time ends after
+    // t_end. Once the object is gone and the tool rests on its stop (`resting.rs`), rings there
+    // in closed form, or is stuck, the run ends; its summary is the full run's at a tight
+    // tolerance, and the tool rides on with the robot.
+    let strong_gas = with(
+        paper("paper-hydraulic-dt70"),
+        &[
+            ("hydraulic.gas_pressure", "53500"),
+            ("hydraulic.orifice_radius", "0.004"),
+            ("object.mass", "0.42"),
+        ],
+    );
+    let no_object = [("object.enabled", "false")];
+    let cases = [
+        ("strong gas preload", strong_gas),
+        (
+            "hydraulic, no object",
+            with(paper("paper-hydraulic-dt70"), &no_object),
+        ),
+        (
+            "bistable, no object",
+            with(paper("paper-bistable-dt70"), &no_object),
+        ),
+        ("rigid, no object", with(paper("paper-rigid"), &no_object)),
+        (
+            "brake after t_end",
+            with(
+                paper("paper-hydraulic-dt70"),
+                &[("robot.dead_time", "0.35")],
+            ),
+        ),
+        (
+            "stuck tool",
+            with(
+                paper("paper-hydraulic-dt70"),
+                &[("object.enabled", "false"), ("tool.dry_friction", "2.0")],
+            ),
+        ),
+    ];
+    for (what, s) in cases {
+        let early = run_traj(&s, 1e-3);
+        assert!(
+            early.events.iter().any(|e| e.name == "early_end"),
+            "{what}: no early end"
+        );
+        let full = run(&with(s.clone(), &[("solver.early_end", "false")]));
+        let reference = run(&tight(with(s.clone(), &[("solver.early_end", "false")])));
+        let (a, b) = (&early.summary, &reference.summary);
+        assert!(
+            3 * a.stats.steps <= 2 * full.summary.stats.steps,
+            "{what}: {} vs {} steps",
+            a.stats.steps,
+            full.summary.stats.steps
+        );
+        // the integration error of rtol 1e-6 (peaks: ~2e-6), and the robot impulse to the
+        // tolerance's momentum scale rtol (m_t + m_p) v_max
+        assert_same(a, b, 1e-5, what);
+        assert!(
+            close(a.robot_impulse, b.robot_impulse, 0.0, 3e-7),
+            "{what}: {} vs {}",
+            a.robot_impulse,
+            b.robot_impulse
+        );
+        assert_eq!(a.t_brake, None, "{what}");
+        assert_eq!(a.t_detect.is_some(), b.t_detect.is_some(), "{what}");
+        assert_eq!(
+            (a.forward_stop_impacts, a.back_stop_impacts),
+            (b.forward_stop_impacts, b.back_stop_impacts),
+            "{what}"
+        );
+        // (without an object nothing moves, and the residual is relative to nothing)
+        assert!(
+            !s.object.enabled || close(a.energy_residual.unwrap(), 0.0, 0.0, 1e-5),
+            "{what}: residual {:?}",
+            a.energy_residual
+        );
+        // at t_end the tool moves with the robot, at the stroke and speed of the reference run
+        let pts = early.trajectory.unwrap().points;
+        let last = pts.last().unwrap();
+        assert_eq!(last.t, s.t_end, "{what}");
+        if s.module != Module::Rigid {
+            let rest = run_traj(
+                &tight(with(s.clone(), &[("solver.early_end", "false")])),
+                0.1,
+            );
+            let end = rest.trajectory.unwrap().points.last().copied().unwrap();
+            assert!(
+                close(last.v_t, end.v_t, 0.0, 1e-6) && close(last.s, end.s, 0.0, 1e-8),
+                "{what}: {last:?} vs {end:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_cruising_robot_does_not_end_early_before_an_object_it_will_reach() {
+    // plane friction stops the object; the robot, whose sensor the strong gas preload keeps
+    // from switching, cruises into it again: no early end until the object is out of reach
+    // for good, and the summary is the full run's to the bit
+    let s = with(
+        paper("paper-hydraulic-dt70"),
+        &[
+            ("hydraulic.gas_pressure", "53500"),
+            ("object.plane_friction", "0.4"),
+        ],
+    );
+    let early = run(&s);
+    let full = run(&with(s.clone(), &[("solver.early_end", "false")]));
+    assert!(early.summary.t_detect.is_none());
+    assert!(early.summary.object_impacts > 1, "{:?}", early.summary);
+    assert!(!early.events.iter().any(|e| e.name == "early_end"));
+    assert_eq!(early.summary, full.summary);
 }
 
 #[test]
@@ -889,9 +1011,14 @@ fn solver_failures_are_statuses_with_messages() {
     assert_eq!(r.summary.status, RunStatus::MaxSteps);
     assert!(r.summary.message.contains("10"), "{}", r.summary.message);
     // the tool resting on its Hertzian stop makes large explicit steps stiff: "stop" ends there
+    // (integrated to t_end: an early end would take over at once)
     let s = with(
         Scene::default(),
-        &[("object.enabled", "false"), ("solver.stiffness", "stop")],
+        &[
+            ("object.enabled", "false"),
+            ("solver.stiffness", "stop"),
+            ("solver.early_end", "false"),
+        ],
     );
     let r = simulate(&s, &RunOptions::default());
     assert_eq!(r.summary.status, RunStatus::Stiff);

@@ -1,0 +1,70 @@
+//! Rest on a stop while the robot cruises on: the settled early end of a run whose robot never
+//! brakes before `t_end` (its sensor never switches, or the dead time ends after the run).
+//!
+//! A tool pressed onto its stop by a strong preload is overdamped there (the stop's
+//! Hunt–Crossley damping `chi d^1.5` grows with the depth): DOPRI5 then steps at its stability
+//! limit, and its solution keeps a wobble of the tolerance's size in the tool's speed (about
+//! `rtol v_r`: 1e-6 m/s at 1 m/s). The speed test of the standing robot's early end
+//! (`100 atol`) never passes on it, so such runs used to integrate the resting tool to `t_end`.
+//!
+//! Here the tool is at rest when its deviation from the equilibrium on its stop, as the speed
+//! `hypot(sd, w0 u)` (`u = s - s_eq`; the largest speed its energy allows in the linearised
+//! oscillator, whose energy only decreases), is within 10 times the speed tolerance
+//! `atol + rtol |v_r|`, and when that deviation decays by a factor of 1000 before `t_end` (the
+//! slowest rate of the linear oscillator: `zeta w0` below critical damping,
+//! `w0 (zeta - sqrt(zeta^2 - 1))` above it). The tool is then, at `t_end`, at the equilibrium to
+//! a hundredth of the speed tolerance, riding with the robot: the extrapolation puts it there
+//! (`x_t = x_r - s_eq`, `v_t = v_r`).
+
+use crate::model::{Eval, Model};
+use crate::physics::Segment;
+
+/// How much the tool's deviation from rest must decay before `t_end`.
+const DECAY_BEFORE_END: f64 = 1000.0;
+
+/// Largest deviation from rest, as a multiple of the speed tolerance `atol + rtol |v_r|`.
+const REST_SPEED: f64 = 10.0;
+
+impl Model {
+    /// The equilibrium stroke (m) of a tool that has come to rest on its stop, if it has (see
+    /// the module docs); `e` is the physics at `(t, y)` on the robot segment `seg`. It must also
+    /// stay short of the sensor, if that has not switched yet.
+    pub(crate) fn rest_on_stop(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        seg: &Segment,
+        e: &Eval,
+    ) -> Option<f64> {
+        let r = &self.regime;
+        let tol_v = self.atol + self.rtol * e.v_r.abs();
+        // cheap tests first: one stop holds the tool, no friction or liquid state that could
+        // move it on, and its speed is at the level of the tolerance
+        if self.layout.liquid.is_some()
+            || r.cavitating
+            || r.fwd == r.back
+            || self.p.d > 0.0
+            || !(e.sd.abs() <= REST_SPEED * tol_v)
+        {
+            return None;
+        }
+        let lin = self.linearisation(t, y, seg, seg.a, e.s)?;
+        let c = &lin.coef;
+        if !(c.k1 > 0.0 && c.c > 0.0) {
+            return None;
+        }
+        let w0 = c.w0();
+        let zeta = c.linear_decay() / w0;
+        let rate = if zeta < 1.0 {
+            zeta * w0
+        } else {
+            w0 * (zeta - (zeta * zeta - 1.0).sqrt())
+        };
+        let speed = e.sd.hypot(w0 * (e.s - lin.s_eq));
+        let sensor_quiet = self.regime.detected || lin.s_eq + 2.0 * speed / w0 < self.p.s_sensor;
+        (speed <= REST_SPEED * tol_v
+            && rate * (self.t_end - t) >= DECAY_BEFORE_END.ln()
+            && sensor_quiet)
+            .then_some(lin.s_eq)
+    }
+}
