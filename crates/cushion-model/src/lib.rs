@@ -40,12 +40,16 @@
 //!   when that sample is the step's end (`peaks.rs`). `max_gas_pressure = p1(max_stroke)`
 //!   (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
-//!   the tolerance (tested).
+//!   the tolerance (tested). SPEC names the standing robot; the same end is taken while the robot
+//!   cruises on with no brake before `t_end` (a preload too strong for the sensor to switch, or
+//!   a dead time past the run), once the object is gone and the tool is stuck or at rest on its
+//!   stop (`resting.rs`): nothing can change any more there either.
 //! - **Ringing tail** (`solver.ringing_tail`, with early end): once only the tool's small ringing
-//!   on its stop is left, the run ends and that ringing is written in closed form (averaging
-//!   method, `ringing.rs`), where it can change no summary value and its predicted error in the
-//!   robot impulse is below `rtol (m_t + m_p) v_max` (`ringing_tail.rs`; tested against running
-//!   to `t_end`).
+//!   on its stop is left (the robot braking, standing, or cruising with a known motion to
+//!   `t_end`), the run ends and that ringing is written in closed form (averaging method,
+//!   `ringing.rs`), where it can change no summary value and its predicted error in the robot
+//!   impulse is below `rtol (m_t + m_p) v_max` (`ringing_tail.rs`; tested against running to
+//!   `t_end`).
 //! - **Cavitation** (extension, off by default): `p_m >= hydraulic.cavitation_pressure`, with
 //!   events at its onset and end; the orifice then carries `p_cav - p1`.
 //! - **Compressible liquid** (SPEC section 6, `hydraulic.bulk_modulus > 0`): the main chamber

@@ -897,6 +897,14 @@ impl Model {
             return t < self.t_end && self.try_ringing_tail(t, y);
         }
         let seg = *self.robot.current();
+        // a cruising robot's run goes on while it may reach the object again (before the
+        // impact, always): found from the state, without the physics
+        if !stopped {
+            let v_t = self.layout.tool.map_or(seg.at(t).1, |i| y[i + 1]);
+            if !self.object_outruns(y, v_t) {
+                return self.try_ringing_tail(t, y);
+            }
+        }
         let e = self.eval(t, y, &seg, &self.regime);
         let object_done = match self.layout.object {
             None => true,
@@ -925,6 +933,15 @@ impl Model {
             }
         };
         (tool_settled && object_done) || self.try_ringing_tail(t, y)
+    }
+
+    /// The object can never be touched again by a robot that cruises on: absent, or free (no
+    /// plane friction) and not slower than `v` (m/s) in the state `y`.
+    pub(crate) fn object_outruns(&self, y: &[f64], v: f64) -> bool {
+        match self.layout.object {
+            None => true,
+            Some(j) => self.p.mu_n == 0.0 && y[j + 1] >= v.max(0.0),
+        }
     }
 
     /// The robot cruises and will not brake before `t_end`: its sensor has not switched (it may

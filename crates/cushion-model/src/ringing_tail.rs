@@ -304,7 +304,7 @@ impl Model {
             && (r.fwd != r.back)
             && (matches!(seg.phase, Phase::Braking | Phase::Stopped)
                 || cruising_to_brake
-                || self.cruising_to_end());
+                || (self.cruising_to_end() && self.object_outruns(y, seg.at(t).1)));
         if !quiet {
             return false;
         }

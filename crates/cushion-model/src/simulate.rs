@@ -12,9 +12,14 @@
 //!   relative speed below `100 atol` m/s and its acceleration below `1000 atol` m/s^2), and the
 //!   object is out of contact and either free and not slower than the tool or stuck on the
 //!   plane, nothing can change any more: the run stops and the final values at `t_end` are
-//!   extrapolated exactly (object at constant speed, everything else at rest). Failing that, the
-//!   run may end once only the tool's small ringing on its stop is left, written in closed form
-//!   (`ringing_tail.rs`).
+//!   extrapolated exactly (object at constant speed, everything else at rest). The same holds
+//!   while the robot cruises on with no brake before `t_end` (its sensor never switched, or the
+//!   dead time ends after the run), the object free and not slower than the tool, and the tool
+//!   stuck short of the sensor or at rest on its stop (`resting.rs`: a tool pressed onto its stop
+//!   is overdamped there, and the explicit solution keeps a wobble of the tolerance's size that
+//!   the speed test above would never let pass); the tool then rides with the robot. Failing
+//!   that, the run may end once only the tool's small ringing on its stop is left, written in
+//!   closed form (`ringing_tail.rs`).
 
 use crate::config::{Module, Scene};
 use crate::model::{to_point, Model};
