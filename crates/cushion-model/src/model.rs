@@ -923,8 +923,11 @@ impl Model {
                 self.regime.tool_stuck
                     || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
             }
-            // the robot cruises on: stuck short of the sensor, or at rest on a stop
-            Some(_) if self.regime.tool_stuck => self.regime.detected || e.s < self.p.s_sensor,
+            // the robot cruises on: stuck short of the sensor (and no compressible liquid still
+            // flowing through the orifice), or at rest on a stop
+            Some(_) if self.regime.tool_stuck => {
+                self.layout.liquid.is_none() && (self.regime.detected || e.s < self.p.s_sensor)
+            }
             Some(_) => {
                 object_done && {
                     self.rest_stroke = self.rest_on_stop(t, y, &seg, &e);
