@@ -10,11 +10,10 @@
 //! Here the tool is at rest when its deviation from the equilibrium on its stop, as the speed
 //! `hypot(sd, w0 u)` (`u = s - s_eq`; the largest speed its energy allows in the linearised
 //! oscillator, whose energy only decreases), is within 10 times the speed tolerance
-//! `atol + rtol |v_r|`, and when that deviation decays by a factor of 1000 before `t_end` (the
-//! slowest rate of the linear oscillator: `zeta w0` below critical damping,
-//! `w0 (zeta - sqrt(zeta^2 - 1))` above it). The tool is then, at `t_end`, at the equilibrium to
-//! a hundredth of the speed tolerance, riding with the robot: the extrapolation puts it there
-//! (`x_t = x_r - s_eq`, `v_t = v_r`).
+//! `atol + rtol |v_r|`, and when the oscillator's slowest mode decays by a factor of 1000 before
+//! `t_end` (rate `zeta w0` below critical damping, `w0 (zeta - sqrt(zeta^2 - 1))` above it). The
+//! tool is then, at `t_end`, at the equilibrium to a small fraction of the speed tolerance,
+//! riding with the robot: the extrapolation puts it there (`x_t = x_r - s_eq`, `v_t = v_r`).
 
 use crate::model::{Eval, Model};
 use crate::physics::Segment;
