@@ -174,6 +174,8 @@ fn same_rows_whatever_the_thread_count() {
     assert_eq!(prov["n_runs_total"], 30);
     assert_eq!(prov["solver"]["solver.rtol"], 1e-6);
     assert!(prov["wall_seconds"].as_f64().unwrap() > 0.0);
+    assert_eq!(prov["invocations"], 1);
+    assert_eq!(prov["wall_seconds_all_invocations"], prov["wall_seconds"]);
     assert_eq!(
         fs::read(a.join("sweep.toml")).unwrap(),
         fs::read(&f).unwrap()
@@ -233,6 +235,23 @@ fn killed_and_resumed_equals_uninterrupted() {
         ("CUSHION_SWEEP_ABORT_AFTER_CHUNKS", "2"),
     );
     assert_eq!(o.status.code(), Some(99));
+    // The two stopped invocations left their running times (up to their last chunk), in the
+    // order they started.
+    let mut records: Vec<String> = fs::read_dir(part.join(".sweep"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("elapsed-") && n.ends_with(".json"))
+        .collect();
+    records.sort();
+    assert_eq!(records.len(), 2, "{records:?}");
+    let earlier: f64 = records
+        .iter()
+        .map(|n| {
+            let v: serde_json::Value =
+                serde_json::from_slice(&fs::read(part.join(".sweep").join(n)).unwrap()).unwrap();
+            v["seconds"].as_f64().unwrap()
+        })
+        .sum();
     let o = cushion(&[
         "sweep",
         s(&f),
@@ -261,6 +280,12 @@ fn killed_and_resumed_equals_uninterrupted() {
         serde_json::from_slice(&fs::read(part.join("provenance.json")).unwrap()).unwrap();
     assert_eq!(prov["runs_computed_now"], 10);
     assert_eq!(prov["resumed"], true);
+    // The wall time of this invocation, and of all three
+    assert_eq!(prov["invocations"], 3);
+    assert_eq!(
+        prov["wall_seconds_all_invocations"].as_f64().unwrap(),
+        earlier + prov["wall_seconds"].as_f64().unwrap()
+    );
 
     // --resume on a finished sweep computes nothing.
     let o = cushion(&["sweep", s(&f), "--out", s(&part), "--resume"]);
@@ -383,6 +408,24 @@ fn union_of_shards_equals_the_whole() {
     assert_eq!(
         fs::read(whole.join("summary.parquet")).unwrap(),
         fs::read(merged.join("summary.parquet")).unwrap()
+    );
+    // The merged wall time is every shard's (one invocation each).
+    let prov = |d: &Path| -> serde_json::Value {
+        serde_json::from_slice(&fs::read(d.join("provenance.json")).unwrap()).unwrap()
+    };
+    let shard_walls: f64 = [2, 0, 1]
+        .iter()
+        .map(|&k| {
+            prov(&shards[k])["wall_seconds_all_invocations"]
+                .as_f64()
+                .unwrap()
+        })
+        .sum();
+    let m = prov(&merged);
+    assert_eq!(m["invocations"], 3);
+    assert!(
+        (m["wall_seconds_all_invocations"].as_f64().unwrap() - shard_walls).abs() <= 1e-12,
+        "{m}"
     );
     // The recorded trajectories, merged in run order, equal the whole sweep's.
     let messages = |p: &Path| -> Vec<(String, u64, Vec<u8>)> {

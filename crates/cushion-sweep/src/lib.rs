@@ -9,6 +9,7 @@ pub mod trajectory_mcap;
 
 // Sweeps.
 pub mod atomic;
+mod invocations;
 pub mod merge;
 pub mod out_lock;
 pub mod report;

@@ -350,6 +350,21 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     prov["runs_in_output"] = serde_json::json!(count);
     prov["runs_failed"] = serde_json::json!(failed);
     prov["wall_seconds"] = serde_json::json!(wall);
+    // every invocation of every shard (a shard's own wall time where it predates the fields)
+    let all_wall: f64 = shards
+        .iter()
+        .filter_map(|s| {
+            s.prov["wall_seconds_all_invocations"]
+                .as_f64()
+                .or(s.prov["wall_seconds"].as_f64())
+        })
+        .sum();
+    let invocations: u64 = shards
+        .iter()
+        .map(|s| s.prov["invocations"].as_u64().unwrap_or(1))
+        .sum();
+    prov["wall_seconds_all_invocations"] = serde_json::json!(all_wall);
+    prov["invocations"] = serde_json::json!(invocations);
     prov["merged_from"] = serde_json::Value::Array(
         shards
             .iter()

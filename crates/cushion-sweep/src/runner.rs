@@ -12,7 +12,8 @@
 //!   `chunk-NNNNNNNN.mcap` with the chunk's recorded trajectories), each written to a temporary
 //!   file, fsynced, then renamed: a chunk file that exists is complete, and it is the journal.
 //!   Killed at any moment, a sweep loses at most the chunk in flight; `--resume` skips the
-//!   chunks whose file exists.
+//!   chunks whose file exists. Each invocation also keeps its running time there
+//!   (`invocations.rs`), so that `provenance.json` gives the wall time of all of them.
 //! - at the end, `summary.parquet`, `summary.csv` and `trajectories.mcap` (when something is
 //!   recorded) are assembled from the chunk files in run order, each written atomically
 //!   (temporary file, fsync, rename); then `sweep.toml` (a copy of the sweep file),
@@ -37,6 +38,7 @@ use rayon::prelude::*;
 use toml::Value;
 
 use crate::atomic::{write_atomic, AtomicFile};
+use crate::invocations::Invocation;
 use crate::out_lock::OutputLock;
 use crate::sampling::Design;
 use crate::summary_table::{parquet_properties, write_csv_rows, RowsBuilder, TableSchema};
@@ -290,6 +292,7 @@ pub fn run_sweep_with(
     fs::create_dir_all(&state_dir).map_err(|e| io_err(state_dir.display(), e))?;
     write_atomic(&state_dir.join("state.json"), state.to_string().as_bytes())
         .map_err(|e| io_err(state_dir.display(), e))?;
+    let invocation = Invocation::new(&state_dir, started);
 
     let schema = TableSchema::new(&sweep.axes);
     let m = shard_len(n_runs, shard);
@@ -346,6 +349,8 @@ pub fn run_sweep_with(
                     &results,
                 )?;
                 write_seconds += t_write.elapsed().as_secs_f64();
+                // bookkeeping only: a sweep does not fail for it
+                let _ = invocation.record();
                 let done = chunks_done_now.fetch_add(1, Ordering::SeqCst) + 1;
                 if abort_after == Some(done) {
                     eprintln!("cushion sweep: {ABORT_ENV}={done}: stopping abruptly (test hook)");
@@ -414,6 +419,7 @@ pub fn run_sweep_with(
         opts.resume,
         threads,
         wall,
+        invocation.earlier(),
     );
     write_atomic(
         &out_dir.join("provenance.json"),
@@ -708,6 +714,7 @@ fn provenance(
     resumed: bool,
     threads: usize,
     wall: f64,
+    earlier: (f64, usize),
 ) -> serde_json::Value {
     let get = |k: &str| {
         sweep
@@ -741,6 +748,8 @@ fn provenance(
         "threads": threads,
         "chunk_size": sweep.chunk_size,
         "wall_seconds": wall,
+        "wall_seconds_all_invocations": earlier.0 + wall,
+        "invocations": earlier.1 + 1,
         "finished_unix_time": unix_now(),
         "solver": solver,
         "base_scene": serde_json::to_value(sweep.base.to_toml()).unwrap_or(serde_json::Value::Null),
