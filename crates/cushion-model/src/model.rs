@@ -906,33 +906,30 @@ impl Model {
             }
         }
         let e = self.eval(t, y, &seg, &self.regime);
-        let object_done = match self.layout.object {
-            None => true,
-            Some(_) => {
-                if self.p.mu_n > 0.0 {
-                    // a cruising robot reaches a stuck object again
-                    stopped && self.regime.obj_stuck
-                } else {
-                    e.v_p >= e.v_t.max(0.0)
+        // (for a cruising robot, the object was found out of reach above)
+        let object_done = !stopped
+            || match self.layout.object {
+                None => true,
+                Some(_) => {
+                    if self.p.mu_n > 0.0 {
+                        self.regime.obj_stuck
+                    } else {
+                        e.v_p >= e.v_t.max(0.0)
+                    }
                 }
-            }
-        };
+            };
         let tool_settled = match self.layout.tool {
             None => true,
             Some(_) if stopped => {
                 self.regime.tool_stuck
                     || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a)
             }
-            // the robot cruises on: stuck short of the sensor (and no compressible liquid still
-            // flowing through the orifice), or at rest on a stop
-            Some(_) if self.regime.tool_stuck => {
-                self.layout.liquid.is_none() && (self.regime.detected || e.s < self.p.s_sensor)
-            }
+            // the robot cruises on: stuck (short of the sensor, or it would have switched; and
+            // no compressible liquid still flowing through the orifice), or at rest on a stop
+            Some(_) if self.regime.tool_stuck => self.layout.liquid.is_none(),
             Some(_) => {
-                object_done && {
-                    self.rest_stroke = self.rest_on_stop(t, y, &seg, &e);
-                    self.rest_stroke.is_some()
-                }
+                self.rest_stroke = self.rest_on_stop(t, y, &seg, &e);
+                self.rest_stroke.is_some()
             }
         };
         (tool_settled && object_done) || self.try_ringing_tail(t, y)

@@ -425,11 +425,9 @@ impl Model {
             let reach = 1.5 * pc.ring.reach();
             let speed = 1.5 * pc.ring.speed_bound();
             let depth = self.holding_depth(pc.s_eq);
+            // (below the largest stroke is also below the sensor's threshold when the sensor
+            // has not switched yet, as while the robot cruises on)
             if !(reach < 0.5 * depth) || !(pc.s_eq + reach < m.max_stroke) {
-                return false;
-            }
-            // a robot that cruises on may still have its sensor to switch
-            if !self.regime.detected && !(pc.s_eq + reach < p.s_sensor) {
                 return false;
             }
             // |F_r| = |G| = |m a_r + K1 u + ...| (no object contact)

@@ -577,7 +577,10 @@ fn early_end_while_the_robot_cruises_on() {
             "{what}: no early end"
         );
         let full = run(&with(s.clone(), &[("solver.early_end", "false")]));
-        let reference = run(&tight(with(s.clone(), &[("solver.early_end", "false")])));
+        let reference = run_traj(
+            &tight(with(s.clone(), &[("solver.early_end", "false")])),
+            0.1,
+        );
         let (a, b) = (&early.summary, &reference.summary);
         assert!(
             3 * a.stats.steps <= 2 * full.summary.stats.steps,
@@ -612,11 +615,14 @@ fn early_end_while_the_robot_cruises_on() {
         let last = pts.last().unwrap();
         assert_eq!(last.t, s.t_end, "{what}");
         if s.module != Module::Rigid {
-            let rest = run_traj(
-                &tight(with(s.clone(), &[("solver.early_end", "false")])),
-                0.1,
-            );
-            let end = rest.trajectory.unwrap().points.last().copied().unwrap();
+            let end = reference
+                .trajectory
+                .as_ref()
+                .unwrap()
+                .points
+                .last()
+                .copied()
+                .unwrap();
             assert!(
                 close(last.v_t, end.v_t, 0.0, 1e-6) && close(last.s, end.s, 0.0, 1e-8),
                 "{what}: {last:?} vs {end:?}"
