@@ -24,10 +24,11 @@
 //! step (`event_chord_bound`), so quiet steps are not sampled inside.
 //!
 //! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at every step's end, and at three interior
-//! points of its dense output where a new peak is possible (`observe_step`); the step holding the largest sample keeps five nodes of its dense output (a degree-4
-//! polynomial, so they reproduce it exactly) and the peak inside it (or just after it, in the
-//! next step, when the largest sample is the step's end) is located once, at the end of the run,
-//! by Brent's search (`peaks.rs`).
+//! points of its dense output where a new peak is possible (`observe_step`); the step holding
+//! the largest sample keeps five nodes of its dense output (a degree-4 polynomial, so they
+//! reproduce it exactly) and the peak inside it (or just after it, in the next step, when the
+//! largest sample is the step's end) is located once, at the end of the run, by Brent's search
+//! (`peaks.rs`).
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};

@@ -163,10 +163,7 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         }
     }
     // One sweep or merge at a time in this folder, until this function returns.
-    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
-    if let Some(w) = lock.warning("cushion merge", &out_dir) {
-        eprintln!("{w}");
-    }
+    let _lock = OutputLock::take_for("cushion merge", &out_dir)?;
 
     // Summaries: a k-way merge by run number, streaming.
     let mut readers = Vec::new();

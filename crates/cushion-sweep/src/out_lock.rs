@@ -67,6 +67,17 @@ impl OutputLock {
         }
     }
 
+    /// Take the lock for `command` (`cushion sweep`, `cushion merge`) as the command reports
+    /// it: refused or failed as a [`SweepError`] ([`LockError::into_sweep_error`]); on a file
+    /// system that cannot lock, the [`OutputLock::warning`] on standard error, and on.
+    pub fn take_for(command: &str, out_dir: &Path) -> Result<OutputLock, SweepError> {
+        let lock = Self::take(out_dir).map_err(|e| e.into_sweep_error(out_dir))?;
+        if let Some(w) = lock.warning(command, out_dir) {
+            eprintln!("{w}");
+        }
+        Ok(lock)
+    }
+
     /// The warning for `command` (`cushion sweep`, `cushion merge`) when the folder could not
     /// be locked.
     pub fn warning(&self, command: &str, out_dir: &Path) -> Option<String> {

@@ -245,10 +245,7 @@ pub fn run_sweep_with(
     });
 
     // One sweep at a time in this folder, from here until this function returns.
-    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
-    if let Some(w) = lock.warning("cushion sweep", &out_dir) {
-        eprintln!("{w}");
-    }
+    let _lock = OutputLock::take_for("cushion sweep", &out_dir)?;
     if state_dir.exists() {
         let old: Option<serde_json::Value> = fs::read(state_dir.join("state.json"))
             .ok()
