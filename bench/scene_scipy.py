@@ -9,13 +9,14 @@ right-hand side (no contact events: the plain way a SciPy user writes it); the s
 terminal event, and the robot's kinks are segment boundaries (sensor -> brake -> stop -> t_end),
 so the integrator never steps across them.
 
-    .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S] [--method M]
+    .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S] [--method M] [--rtol R]
 
 Prints time per run, right-hand-side evaluations, steps per segment of the robot's profile, and
 the results to compare with
 `cargo run -p cushion-model --example run_scene -- sweeps/scenes/paper-hydraulic-dt70.toml`.
 `--method` takes any `solve_ivp` method (RK45, DOP853, Radau, BDF, LSODA): the implicit ones
-show whether this scene is stiff enough for an implicit method to take fewer steps.
+show whether this scene is stiff enough for an implicit method to take fewer steps. `--rtol`
+sets rtol (default 1e-6) and atol = rtol / 1000, the scene's own ratio.
 """
 
 import argparse
@@ -107,11 +108,14 @@ def run(dead_time, method="RK45"):
 
 
 def main():
+    global RTOL, ATOL
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--dead-time", type=float, default=0.070)
     ap.add_argument("--method", default="RK45", help="a solve_ivp method (default RK45)")
+    ap.add_argument("--rtol", type=float, default=1e-6, help="rtol (default 1e-6); atol = rtol / 1000")
     args = ap.parse_args()
+    RTOL, ATOL = args.rtol, args.rtol / 1000.0
     run(args.dead_time, args.method)  # warm up
     times = []
     for _ in range(args.runs):
