@@ -100,6 +100,75 @@ const SUMMARY_NAMES: [&str; 16] = [
     "energy_residual",
 ];
 
+/// Whether `value` conforms to `schema`, for the part of JSON Schema the MCAP schemas use
+/// (`type` object / number / string, `properties`, `required`), and declares every key it has
+/// (so a viewer finds each field with its description). The error names the offending path.
+fn conforms(value: &Value, schema: &Value, path: &str) -> Result<(), String> {
+    match schema["type"].as_str() {
+        Some("number") if value.is_number() => Ok(()),
+        Some("string") if value.is_string() => Ok(()),
+        Some("object") => {
+            let obj = value
+                .as_object()
+                .ok_or_else(|| format!("{path}: not an object"))?;
+            for key in schema["required"].as_array().into_iter().flatten() {
+                let key = key.as_str().unwrap_or_default();
+                if !obj.contains_key(key) {
+                    return Err(format!("{path}: lacks the required {key}"));
+                }
+            }
+            for (key, v) in obj {
+                let sub = schema["properties"]
+                    .get(key)
+                    .ok_or_else(|| format!("{path}.{key}: not in the schema"))?;
+                conforms(v, sub, &format!("{path}.{key}"))?;
+            }
+            Ok(())
+        }
+        other => Err(format!("{path}: {value} is not of type {other:?}")),
+    }
+}
+
+/// The messages of an MCAP file by topic, each checked against its channel's schema.
+fn mcap_messages(path: &Path) -> Vec<(String, u64, Value)> {
+    let bytes = std::fs::read(path).unwrap();
+    mcap::MessageStream::new(&bytes)
+        .unwrap()
+        .map(|m| {
+            let m = m.unwrap();
+            let schema: Value =
+                serde_json::from_slice(&m.channel.schema.as_ref().expect("schema").data)
+                    .expect("schema is JSON");
+            let body: Value = serde_json::from_slice(&m.data).unwrap();
+            if let Err(e) = conforms(&body, &schema, &m.channel.topic) {
+                panic!("message at {} ns: {e}", m.log_time);
+            }
+            (m.channel.topic.clone(), m.log_time, body)
+        })
+        .collect()
+}
+
+#[test]
+fn the_schema_check_rejects_what_does_not_conform() {
+    let schema: Value = serde_json::from_str(
+        r#"{"type":"object","properties":{"t":{"type":"number"},"name":{"type":"string"}},"required":["t"]}"#,
+    )
+    .unwrap();
+    let ok: Value = serde_json::from_str(r#"{"t":1.5,"name":"brake"}"#).unwrap();
+    assert_eq!(conforms(&ok, &schema, "m"), Ok(()));
+    for bad in [
+        r#"{"name":"brake"}"#,
+        r#"{"t":"1.5"}"#,
+        r#"{"t":1.5,"name":2}"#,
+        r#"{"t":1.5,"x":0}"#,
+        r#"{"t":null}"#,
+        r#"[1]"#,
+    ] {
+        let v: Value = serde_json::from_str(bad).unwrap();
+        assert!(conforms(&v, &schema, "m").is_err(), "{bad} passed");
+    }
+}
+
 #[test]
 fn json_summary_has_the_spec_names() {
     let v = json(&[]);
@@ -276,7 +345,8 @@ fn csv_and_mcap_agree_with_the_summary() {
     assert!(max_fr <= peak.abs() * (1.0 + 1e-9));
     assert!(max_fr >= 0.5 * peak.abs());
 
-    // MCAP
+    // MCAP: every message conforms to its channel's schema
+    mcap_messages(&mcap);
     let bytes = std::fs::read(&mcap).unwrap();
     let mut state = Vec::new();
     let mut events = Vec::new();
@@ -337,7 +407,15 @@ fn csv_and_mcap_agree_with_the_summary() {
 fn absent_quantities_are_empty_cells() {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("bistable.csv");
-    json(&["--set", "module=bistable", "--csv", csv.to_str().unwrap()]);
+    let mcap = dir.path().join("bistable.mcap");
+    json(&[
+        "--set",
+        "module=bistable",
+        "--csv",
+        csv.to_str().unwrap(),
+        "--mcap",
+        mcap.to_str().unwrap(),
+    ]);
     let (header, rows) = read_csv(&csv);
     let ip1 = col(&header, "p1");
     assert!(
@@ -345,6 +423,15 @@ fn absent_quantities_are_empty_cells() {
         "no gas: p1 cells are empty"
     );
     assert!(rows.iter().all(|r| r[col(&header, "F_r")].is_some()));
+    // in MCAP an absent quantity is left out of the message (its schema allows that)
+    let state: Vec<_> = mcap_messages(&mcap)
+        .into_iter()
+        .filter(|(topic, _, _)| topic == "/state")
+        .collect();
+    assert_eq!(state.len(), rows.len());
+    assert!(state
+        .iter()
+        .all(|(_, _, m)| m.get("p1").is_none() && m["F_r"].is_number()));
 }
 
 #[test]
