@@ -407,15 +407,7 @@ fn csv_and_mcap_agree_with_the_summary() {
 fn absent_quantities_are_empty_cells() {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("bistable.csv");
-    let mcap = dir.path().join("bistable.mcap");
-    json(&[
-        "--set",
-        "module=bistable",
-        "--csv",
-        csv.to_str().unwrap(),
-        "--mcap",
-        mcap.to_str().unwrap(),
-    ]);
+    json(&["--set", "module=bistable", "--csv", csv.to_str().unwrap()]);
     let (header, rows) = read_csv(&csv);
     let ip1 = col(&header, "p1");
     assert!(
@@ -423,15 +415,6 @@ fn absent_quantities_are_empty_cells() {
         "no gas: p1 cells are empty"
     );
     assert!(rows.iter().all(|r| r[col(&header, "F_r")].is_some()));
-    // in MCAP an absent quantity is left out of the message (its schema allows that)
-    let state: Vec<_> = mcap_messages(&mcap)
-        .into_iter()
-        .filter(|(topic, _, _)| topic == "/state")
-        .collect();
-    assert_eq!(state.len(), rows.len());
-    assert!(state
-        .iter()
-        .all(|(_, _, m)| m.get("p1").is_none() && m["F_r"].is_number()));
 }
 
 #[test]
@@ -551,12 +534,10 @@ fn free_tool_without_object() {
     assert!(rows
         .iter()
         .all(|r| r[col(&header, "x_p")].is_none() && r[col(&header, "v_p")].is_none()));
-    let bytes = std::fs::read(&mcap).unwrap();
+    // in MCAP the absent quantities are left out of the messages, which still conform
     let mut n = 0;
-    for m in mcap::MessageStream::new(&bytes).unwrap() {
-        let m = m.unwrap();
-        if m.channel.topic == "/state" {
-            let body: Value = serde_json::from_slice(&m.data).unwrap();
+    for (topic, _, body) in mcap_messages(&mcap) {
+        if topic == "/state" {
             assert!(
                 body.get("x_p").is_none() && body.get("v_p").is_none(),
                 "absent fields left out"
