@@ -129,16 +129,19 @@ fn conforms(value: &Value, schema: &Value, path: &str) -> Result<(), String> {
     }
 }
 
-/// The messages of an MCAP file by topic, each checked against its channel's schema.
+/// The messages of an MCAP file as `(topic, log_time, body)`, each checked: JSON with a
+/// `jsonschema` schema it conforms to, and published at its log time.
 fn mcap_messages(path: &Path) -> Vec<(String, u64, Value)> {
     let bytes = std::fs::read(path).unwrap();
     mcap::MessageStream::new(&bytes)
         .unwrap()
         .map(|m| {
             let m = m.unwrap();
-            let schema: Value =
-                serde_json::from_slice(&m.channel.schema.as_ref().expect("schema").data)
-                    .expect("schema is JSON");
+            assert_eq!(m.channel.message_encoding, "json");
+            assert_eq!(m.log_time, m.publish_time);
+            let schema = m.channel.schema.as_ref().expect("schema");
+            assert_eq!(schema.encoding, "jsonschema");
+            let schema: Value = serde_json::from_slice(&schema.data).expect("schema is JSON");
             let body: Value = serde_json::from_slice(&m.data).unwrap();
             if let Err(e) = conforms(&body, &schema, &m.channel.topic) {
                 panic!("message at {} ns: {e}", m.log_time);
@@ -345,31 +348,22 @@ fn csv_and_mcap_agree_with_the_summary() {
     assert!(max_fr <= peak.abs() * (1.0 + 1e-9));
     assert!(max_fr >= 0.5 * peak.abs());
 
-    // MCAP: every message conforms to its channel's schema
-    mcap_messages(&mcap);
-    let bytes = std::fs::read(&mcap).unwrap();
+    // MCAP (each message checked against its schema by `mcap_messages`)
     let mut state = Vec::new();
     let mut events = Vec::new();
-    for m in mcap::MessageStream::new(&bytes).unwrap() {
-        let m = m.unwrap();
-        assert_eq!(m.channel.message_encoding, "json");
-        let schema = m.channel.schema.as_ref().expect("schema");
-        assert_eq!(schema.encoding, "jsonschema");
-        let _: Value = serde_json::from_slice(&schema.data).expect("schema is JSON");
-        let body: Value = serde_json::from_slice(&m.data).unwrap();
-        match m.channel.topic.as_str() {
-            "/state" => state.push((m.log_time, m.publish_time, body)),
-            "/events" => events.push((m.log_time, body)),
+    for (topic, log_time, body) in mcap_messages(&mcap) {
+        match topic.as_str() {
+            "/state" => state.push((log_time, body)),
+            "/events" => events.push((log_time, body)),
             other => panic!("unexpected topic {other}"),
         }
     }
     assert_eq!(state.len(), rows.len(), "one /state message per CSV row");
-    for (i, (log, publish, body)) in state.iter().enumerate() {
-        assert_eq!(log, publish);
+    for (i, (log, body)) in state.iter().enumerate() {
         assert_eq!(*log, (t[i] * 1e9).round() as u64);
         assert!(close(body["t"].as_f64().unwrap(), t[i], 1e-15));
     }
-    let (_, _, last_msg) = state.last().unwrap();
+    let (_, last_msg) = state.last().unwrap();
     assert!(close(
         last_msg["v_p"].as_f64().unwrap(),
         last[ivp].unwrap(),

@@ -94,6 +94,11 @@ fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
 
+/// A JSON file's contents (`provenance.json`, an invocation's `elapsed-*.json`).
+fn read_json(p: &Path) -> serde_json::Value {
+    serde_json::from_slice(&fs::read(p).unwrap()).unwrap()
+}
+
 fn read_batches(p: &Path) -> Vec<RecordBatch> {
     let f = fs::File::open(p).unwrap();
     ParquetRecordBatchReaderBuilder::try_new(f)
@@ -168,8 +173,7 @@ fn same_rows_whatever_the_thread_count() {
         (0..30).collect::<Vec<_>>()
     );
     // Provenance and the sweep file copy; no working folder left.
-    let prov: serde_json::Value =
-        serde_json::from_slice(&fs::read(a.join("provenance.json")).unwrap()).unwrap();
+    let prov = read_json(&a.join("provenance.json"));
     assert_eq!(prov["threads"], 1);
     assert_eq!(prov["n_runs_total"], 30);
     assert_eq!(prov["solver"]["solver.rtol"], 1e-6);
@@ -247,9 +251,9 @@ fn killed_and_resumed_equals_uninterrupted() {
     let earlier: f64 = records
         .iter()
         .map(|n| {
-            let v: serde_json::Value =
-                serde_json::from_slice(&fs::read(part.join(".sweep").join(n)).unwrap()).unwrap();
-            v["seconds"].as_f64().unwrap()
+            read_json(&part.join(".sweep").join(n))["seconds"]
+                .as_f64()
+                .unwrap()
         })
         .sum();
     let o = cushion(&[
@@ -276,8 +280,7 @@ fn killed_and_resumed_equals_uninterrupted() {
         fs::read(whole.join("summary.parquet")).unwrap(),
         fs::read(part.join("summary.parquet")).unwrap()
     );
-    let prov: serde_json::Value =
-        serde_json::from_slice(&fs::read(part.join("provenance.json")).unwrap()).unwrap();
+    let prov = read_json(&part.join("provenance.json"));
     assert_eq!(prov["runs_computed_now"], 10);
     assert_eq!(prov["resumed"], true);
     // The wall time of this invocation, and of all three (to the ulp that JSON's decimal
@@ -413,9 +416,7 @@ fn union_of_shards_equals_the_whole() {
         fs::read(merged.join("summary.parquet")).unwrap()
     );
     // The merged wall time is every shard's (one invocation each).
-    let prov = |d: &Path| -> serde_json::Value {
-        serde_json::from_slice(&fs::read(d.join("provenance.json")).unwrap()).unwrap()
-    };
+    let prov = |d: &Path| read_json(&d.join("provenance.json"));
     let shard_walls: f64 = [2, 0, 1]
         .iter()
         .map(|&k| {
