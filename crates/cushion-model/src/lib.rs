@@ -87,6 +87,7 @@
 //! (one run), [`summary`](mod@summary), [`trajectory`].
 
 pub mod config;
+mod gas_law;
 pub mod model;
 mod peaks;
 pub mod physics;

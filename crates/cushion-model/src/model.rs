@@ -31,6 +31,7 @@
 //! (`peaks.rs`).
 
 use crate::config::{Module, RobotStart, Scene};
+use crate::gas_law::GasLaw;
 use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};
 use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
@@ -265,6 +266,9 @@ pub(crate) struct Metrics {
 /// The ODE system of one scene.
 pub struct Model {
     pub(crate) p: Params,
+    /// The hydraulic module's gas law (`gas_law.rs`; of the volume moved through the orifice
+    /// with a compressible liquid).
+    gas: GasLaw,
     pub layout: Layout,
     pub(crate) regime: Regime,
     /// The regime in force during the step being reported to `on_step`.
@@ -431,7 +435,9 @@ impl Model {
             add(EV_CAVITATION);
         }
         let atol = scene.solver.atol;
+        let gas_area = if layout.liquid.is_some() { 1.0 } else { p.a_p };
         let mut m = Model {
+            gas: GasLaw::new(p.p10, p.v_g0, gas_area, p.kappa),
             p,
             layout,
             regime,
@@ -560,7 +566,7 @@ impl Model {
                     // pressure drop allows, dp = 0.5 c0 rho (Q/A_o)^2 sgn(Q)
                     let q = self.layout.liquid.unwrap_or(0);
                     let (p_m, v_x) = (y[q], y[q + 1]);
-                    e.p1 = physics::gas_pressure(p.p10, p.v_g0, 1.0, p.kappa, v_x);
+                    e.p1 = self.gas.pressure(v_x);
                     e.dp = p_m - e.p1;
                     e.flow = e.dp.signum() * p.a_o * (2.0 * e.dp.abs() / (p.c0 * p.rho)).sqrt();
                     let v_m = p.v_m0 - p.a_p * e.s;
@@ -570,7 +576,7 @@ impl Model {
                     e.p_liquid = p_m * (p.a_p * e.sd - e.flow);
                 }
                 Module::Hydraulic => {
-                    e.p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, e.s);
+                    e.p1 = self.gas.pressure(e.s);
                     e.dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, e.sd);
                     if r.cavitating {
                         // the liquid column tears: the chamber holds p_cav, the orifice

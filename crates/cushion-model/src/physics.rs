@@ -48,7 +48,8 @@ pub fn orifice_pressure_drop(c0: f64, rho: f64, a_p: f64, a_o: f64, sd: f64) -> 
 #[inline]
 pub fn gas_pressure(p10: f64, v_g0: f64, a_p: f64, kappa: f64, s: f64) -> f64 {
     // exp(kappa ln x) rather than powf: the same to a few ulp here, and several times cheaper
-    // than glibc's correctly rounded pow (this is the right-hand side's most expensive term).
+    // than glibc's correctly rounded pow. The right-hand side uses it only now and then
+    // (`gas_law.rs` evaluates the series about its last value in between).
     p10 * (kappa * (v_g0 / (v_g0 - a_p * s)).ln()).exp()
 }
 
