@@ -27,7 +27,10 @@
 //! - **Dry friction on the tool** (`d > 0`): the tool starts stuck when friction can hold it; while
 //!   stuck it moves with the flange and friction is whatever holds it there; it slips when that
 //!   exceeds `d` (direction: the sign of the needed force), and sticks again when `sd` returns
-//!   to zero and `d` can hold it. No smoothing.
+//!   to zero and `d` can hold it; when `d` cannot, it slips back the other way. No smoothing.
+//!   The stick event fires when `sd` passes 1e-12 m/s beyond zero (the object's: `v_p`
+//!   below -1e-12 m/s), so that a slip, which begins at a speed of exactly zero, starts its
+//!   event function on the side it slips to and a quick return is seen.
 //! - **Plane friction** (`mu > 0`): the object starts stuck, slips once `F_c > mu m_p g`, sticks
 //!   again when its speed returns to zero with `F_c <= mu m_p g`. It only slides forward (the
 //!   tool can only push).

@@ -239,6 +239,15 @@ const CONTACT_HYSTERESIS: f64 = 1e-14;
 /// (seen with the tool settled at `|F_f| = d` to 4e-13).
 const STICK_HYSTERESIS: f64 = 1e-9;
 
+/// Speed (m/s) past zero at which a slipping part's stick test runs: its event function is
+/// its slip speed plus this on the side it slips to (the tool: `sd + dir 1e-12`; the object,
+/// which slides forward only: `v_p + 1e-12`). A slip begins at a speed of zero, and a function
+/// that starts a step at exactly zero never fires there; without the margin, a reverse slip
+/// that turns back within the step after a failed stick test was invisible, and the tool went
+/// on slipping with its friction pushing instead of braking, until its speed next passed zero
+/// (`tests/runs.rs`: the object then left up to 2.5e-3 m/s too fast at rtol 1e-8).
+const SLIP_HYSTERESIS: f64 = 1e-12;
+
 const EV_SENSOR: u8 = 0;
 const EV_OBJECT: u8 = 1;
 const EV_FWD: u8 = 2;
@@ -700,7 +709,7 @@ impl Model {
                     let e = self.eval(t, y, k.seg, r);
                     self.p.d * (1.0 + STICK_HYSTERESIS) - e.f_f.abs()
                 } else {
-                    v_r - v_t
+                    v_r - v_t + r.tool_dir * SLIP_HYSTERESIS
                 }
             }
             EV_OBJ_STICK => {
@@ -709,7 +718,7 @@ impl Model {
                     self.p.mu_n * (1.0 + STICK_HYSTERESIS) - e.f_c
                 } else {
                     let j = self.layout.object.unwrap_or(0);
-                    y[j + 1]
+                    y[j + 1] + SLIP_HYSTERESIS
                 }
             }
             EV_CAVITATION => self.cavitation_margin(x_r - x_t, v_r - v_t),

@@ -882,6 +882,54 @@ fn a_stuck_tool_slips_only_when_its_load_changes() {
 }
 
 #[test]
+fn a_reverse_slip_after_a_failed_stick_test_is_followed() {
+    // Two scenes of a sweep (LHS over every option) where the tool's slip speed reaches zero
+    // while static friction cannot hold it: it slips back briefly and then sticks. The return
+    // through zero lay within the step after the failed test, from a slip speed of exactly zero,
+    // which never fires: the run missed the stick, slipped on with its friction pushing the tool
+    // instead of braking it, and ended with the object 2.5e-3 m/s (bistable) and 1.4e-3 m/s
+    // (hydraulic, plane friction) too fast at rtol 1e-8. Now each agrees with an rtol 1e-10 run,
+    // event for event.
+    let scenes = [
+        with(
+            paper("paper-hydraulic-dt70"),
+            &[
+                ("module", "bistable"),
+                ("robot.dead_time", "0.06782962258315087"),
+                ("object.mass", "0.15969388556119724"),
+                ("tool.dry_friction", "0.3"),
+                ("robot.brake_deceleration", "15.607678936147021"),
+            ],
+        ),
+        with(
+            paper("paper-hydraulic-dt70"),
+            &[
+                ("robot.dead_time", "0.031058096045281664"),
+                ("hydraulic.gas_pressure", "14011.413649905186"),
+                ("hydraulic.orifice_radius", "0.011050793074894785"),
+                ("object.mass", "0.5070449035162584"),
+                ("tool.dry_friction", "0.3"),
+                ("object.plane_friction", "0.4"),
+                ("robot.start", "rest"),
+                ("robot.brake_deceleration", "18.764536254227906"),
+            ],
+        ),
+    ];
+    let names =
+        |r: &RunResult| -> Vec<String> { r.events.iter().map(|e| e.name.clone()).collect() };
+    for base in scenes {
+        let reference = run(&tight(base.clone()));
+        let r = run(&with(base, &[("solver.rtol", "1e-8")]));
+        assert_eq!(names(&r), names(&reference));
+        let (a, b) = (&r.summary, &reference.summary);
+        let v = (a.object_final_velocity.unwrap() - b.object_final_velocity.unwrap()).abs();
+        assert!(v < 1e-6, "object speed off by {v} m/s");
+        let i = (a.robot_impulse - b.robot_impulse).abs();
+        assert!(i < 1e-6, "robot impulse off by {i} N s");
+    }
+}
+
+#[test]
 fn plane_friction_has_a_stick_phase_and_travel() {
     let mu = 0.5;
     let s = tight(with(
