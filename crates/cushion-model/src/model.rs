@@ -35,7 +35,7 @@ use crate::gas_law::GasLaw;
 use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};
 use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
-use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
+use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step, MAX_EVENTS};
 
 /// Where each part of the state lives (`None`: absent).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -152,6 +152,10 @@ pub(crate) struct Regime {
     pub obj_stuck: bool,
     /// The main chamber sits at the cavitation pressure.
     pub cavitating: bool,
+    /// In contact, but its force has fallen to zero before the bodies part (fast restitution:
+    /// `k + chi dd < 0`): the object contact; the end-stop in contact (at most one is).
+    pub obj_released: bool,
+    pub stop_released: bool,
 }
 
 /// Everything at one instant: kinematics (m, m/s, m/s^2), pressures (Pa), forces (N, + along
@@ -248,6 +252,10 @@ const STICK_HYSTERESIS: f64 = 1e-9;
 /// (`tests/runs.rs`: the object then left up to 2.5e-3 m/s too fast at rtol 1e-8).
 const SLIP_HYSTERESIS: f64 = 1e-12;
 
+/// Relative margin (of `k`) by which `k + chi dd` must rise above zero for a released contact
+/// to push again (see `release_value`).
+const RELEASE_HYSTERESIS: f64 = 1e-12;
+
 const EV_SENSOR: u8 = 0;
 const EV_OBJECT: u8 = 1;
 const EV_FWD: u8 = 2;
@@ -255,6 +263,8 @@ const EV_BACK: u8 = 3;
 const EV_TOOL_STICK: u8 = 4;
 const EV_OBJ_STICK: u8 = 5;
 const EV_CAVITATION: u8 = 6;
+const EV_OBJ_RELEASE: u8 = 7;
+const EV_STOP_RELEASE: u8 = 8;
 
 /// Peaks and counts gathered along the run.
 #[derive(Clone, Debug)]
@@ -284,7 +294,7 @@ pub struct Model {
     step_regime: Regime,
     pub(crate) robot: RobotProfile,
     pub(crate) pending_brake: Option<f64>,
-    events: [u8; 8],
+    events: [u8; MAX_EVENTS],
     n_events: usize,
     pub(crate) metrics: Metrics,
     pub(crate) log: Vec<EventLogEntry>,
@@ -417,8 +427,10 @@ impl Model {
             tool_dir: 0.0,
             obj_stuck: p.mu_n > 0.0,
             cavitating: false,
+            obj_released: false,
+            stop_released: false,
         };
-        let mut events = [0u8; 8];
+        let mut events = [0u8; MAX_EVENTS];
         let mut n_events = 0;
         let mut add = |e: u8| {
             events[n_events] = e;
@@ -429,10 +441,12 @@ impl Model {
         }
         if p.has_object {
             add(EV_OBJECT);
+            add(EV_OBJ_RELEASE);
         }
         if p.module != Module::Rigid {
             add(EV_FWD);
             add(EV_BACK);
+            add(EV_STOP_RELEASE);
             if p.d > 0.0 {
                 add(EV_TOOL_STICK);
             }
@@ -560,12 +574,12 @@ impl Model {
             e.sd = v_r - e.v_t;
             if r.fwd {
                 let d = -e.s;
-                e.f_fwd = physics::hunt_crossley(p.k_e, p.chi_e, d, -e.sd);
+                e.f_fwd = contact_force(p.k_e, p.chi_e, d, -e.sd, r.stop_released);
                 e.p_contact += (e.f_fwd - p.k_e * pos15(d)) * (-e.sd);
             }
             if r.back {
                 let d = e.s - p.stroke;
-                e.f_back = physics::hunt_crossley(p.k_e, p.chi_e, d, e.sd);
+                e.f_back = contact_force(p.k_e, p.chi_e, d, e.sd, r.stop_released);
                 e.p_contact += (e.f_back - p.k_e * pos15(d)) * e.sd;
             }
             f_stop = e.f_back - e.f_fwd;
@@ -611,7 +625,7 @@ impl Model {
             if r.obj_contact {
                 let d = e.x_t - e.x_p;
                 let dd = e.v_t - e.v_p;
-                e.f_c = physics::hunt_crossley(p.k_c, p.chi_c, d, dd);
+                e.f_c = contact_force(p.k_c, p.chi_c, d, dd, r.obj_released);
                 e.p_contact += (e.f_c - p.k_c * pos15(d)) * dd;
             }
         }
@@ -704,6 +718,23 @@ impl Model {
             }
             EV_FWD => x_t - x_r - if r.fwd { 0.0 } else { CONTACT_HYSTERESIS },
             EV_BACK => x_r - x_t - self.p.stroke - if r.back { 0.0 } else { CONTACT_HYSTERESIS },
+            EV_OBJ_RELEASE => {
+                let j = self.layout.object.unwrap_or(0);
+                let p = &self.p;
+                release_value(
+                    p.k_c,
+                    p.chi_c,
+                    v_t - y[j + 1],
+                    r.obj_contact,
+                    r.obj_released,
+                )
+            }
+            EV_STOP_RELEASE => {
+                let p = &self.p;
+                // the forward stop's penetration rate is `-sd`, the back stop's `sd`
+                let dd = if r.fwd { v_t - v_r } else { v_r - v_t };
+                release_value(p.k_e, p.chi_e, dd, r.fwd || r.back, r.stop_released)
+            }
             EV_TOOL_STICK => {
                 if r.tool_stuck {
                     let e = self.eval(t, y, k.seg, r);
@@ -745,6 +776,10 @@ impl Model {
             EV_SENSOR if r.detected => Some(0.0),
             EV_SENSOR | EV_FWD | EV_BACK => Some(tool_x + robot_x),
             EV_OBJECT => Some(tool_x + object(0)),
+            // `k + chi dd` is affine in the speeds (the robot's is linear within a step)
+            EV_OBJ_RELEASE if r.obj_contact => Some(self.p.chi_c * (tool_v + object(1))),
+            EV_STOP_RELEASE if r.fwd || r.back => Some(self.p.chi_e * tool_v),
+            EV_OBJ_RELEASE | EV_STOP_RELEASE => Some(0.0),
             EV_TOOL_STICK if !r.tool_stuck => Some(tool_v),
             EV_OBJ_STICK if !r.obj_stuck => Some(object(1)),
             // stuck and untouched: `mu m_p g - F_c` with `F_c = 0`, a constant
@@ -796,6 +831,15 @@ impl Model {
                     self.log_event("object_contact_end", t, y);
                     self.regime.obj_contact = false;
                 }
+                self.regime.obj_released = false;
+                EventAction::Restart
+            }
+            EV_OBJ_RELEASE => {
+                self.regime.obj_released = !self.regime.obj_released;
+                EventAction::Restart
+            }
+            EV_STOP_RELEASE => {
+                self.regime.stop_released = !self.regime.stop_released;
                 EventAction::Restart
             }
             EV_FWD => {
@@ -807,6 +851,7 @@ impl Model {
                     self.log_event("forward_stop_end", t, y);
                     self.regime.fwd = false;
                 }
+                self.regime.stop_released = false;
                 EventAction::Restart
             }
             EV_BACK => {
@@ -819,6 +864,7 @@ impl Model {
                     self.log_event("back_stop_end", t, y);
                     self.regime.back = false;
                 }
+                self.regime.stop_released = false;
                 EventAction::Restart
             }
             EV_TOOL_STICK => {
@@ -1146,6 +1192,33 @@ impl Model {
 /// The largest state a scene can need (tool 2 + liquid 2 + object 2 + ledger 6 + contact
 /// impulse 1).
 pub const MAX_STATES: usize = 13;
+
+/// Hunt–Crossley force of a contact (N, >= 0 while pushing), penetration `d` (m), its rate
+/// `dd` (m/s): `d^1.5 (k + chi dd)` while it pushes, 0 once released. The clamp at zero of
+/// `physics::hunt_crossley` is the release event here (`EV_*_RELEASE`): inside a step the law
+/// stays smooth, and the step that reaches `k + chi dd = 0` is cut there.
+#[inline(always)]
+fn contact_force(k: f64, chi: f64, d: f64, dd: f64, released: bool) -> f64 {
+    if released {
+        0.0
+    } else {
+        pos15(d) * (k + chi * dd)
+    }
+}
+
+/// `k + chi dd` (N/m^1.5, the sign of a contact's force while it pushes) as an event function,
+/// with a hysteresis of `RELEASE_HYSTERESIS k` while released, so that the function starts
+/// strictly on its side after either event; 1 while the contact is off.
+#[inline(always)]
+fn release_value(k: f64, chi: f64, dd: f64, on: bool, released: bool) -> f64 {
+    if !on {
+        1.0
+    } else if released {
+        k + chi * dd - RELEASE_HYSTERESIS * k
+    } else {
+        k + chi * dd
+    }
+}
 
 #[inline]
 fn pos15(d: f64) -> f64 {

@@ -930,6 +930,59 @@ fn a_reverse_slip_after_a_failed_stick_test_is_followed() {
 }
 
 #[test]
+fn a_contact_released_before_the_bodies_part_converges_with_the_tolerance() {
+    // A sweep scene (rigid module, a 0.93 kg object): the bodies part faster than
+    // k_c / chi_c = 0.44 m/s, so the contact force falls to zero at 14.5 ms, 3.3 ms before the
+    // penetration does. Hunt–Crossley's clamp at zero was a kink inside a step there: the
+    // object's final speed was 4.3e-5 m/s off at rtol 1e-6 (33 rtol; 3.4e-5 at 1e-5). The
+    // release is an event now, and the error follows the tolerance.
+    let base = with(
+        paper("paper-hydraulic-dt70"),
+        &[
+            ("module", "rigid"),
+            ("robot.dead_time", "0.0090368923552555"),
+            ("object.mass", "0.933554083927454"),
+            ("robot.brake_deceleration", "25.684337267335277"),
+        ],
+    );
+    let reference = run_traj(&tight(base.clone()), 1e-4);
+    // the force is zero while the bodies still overlap: a released contact
+    let end = reference
+        .events
+        .iter()
+        .find(|e| e.name == "object_contact_end")
+        .unwrap()
+        .t;
+    let released = reference
+        .trajectory
+        .as_ref()
+        .unwrap()
+        .points
+        .iter()
+        .filter(|p| p.t > end - 3e-3 && p.t < end && p.x_t > p.x_p)
+        .all(|p| p.f_c == 0.0);
+    assert!(
+        released,
+        "the contact force is not zero before the end at {end}"
+    );
+    let v_ref = reference.summary.object_final_velocity.unwrap();
+    for (rtol, atol) in [(1e-4, 1e-7), (1e-5, 1e-8), (1e-6, 1e-9), (1e-8, 1e-11)] {
+        let r = run(&with(
+            base.clone(),
+            &[
+                ("solver.rtol", &rtol.to_string()),
+                ("solver.atol", &atol.to_string()),
+            ],
+        ));
+        let err = (r.summary.object_final_velocity.unwrap() - v_ref).abs();
+        assert!(
+            err < 3.0 * rtol * v_ref,
+            "rtol {rtol}: object speed off by {err} m/s"
+        );
+    }
+}
+
+#[test]
 fn plane_friction_has_a_stick_phase_and_travel() {
     let mu = 0.5;
     let s = tight(with(
