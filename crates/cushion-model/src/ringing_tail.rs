@@ -302,6 +302,7 @@ impl Model {
             && !r.cavitating
             && !r.obj_contact
             && (r.fwd != r.back)
+            && !r.stop_released
             && (matches!(seg.phase, Phase::Braking | Phase::Stopped)
                 || cruising_to_brake
                 || (self.cruising_to_end() && self.object_outruns(y, seg.at(t).1)));
