@@ -1152,15 +1152,26 @@ impl Model {
         if fr_best.1.abs() > self.metrics.peak_fr.abs() {
             self.metrics.peak_fr = fr_best.1;
             self.metrics.t_peak_fr = tk(fr_best.0);
-            self.fr_peak.set(cand(fr_best.0));
+            self.fr_peak.set(cand(fr_best.0), fr_best.1.abs());
+        } else {
+            self.fr_peak.offer(fr_best.1.abs(), || cand(fr_best.0));
         }
+        self.fr_peak.note_end(e1.f_r.abs());
         if fc_best.1 > self.metrics.peak_fc {
             self.metrics.peak_fc = fc_best.1;
-            self.fc_peak.set(cand(fc_best.0));
+            self.fc_peak.set(cand(fc_best.0), fc_best.1);
+        } else {
+            self.fc_peak.offer(fc_best.1, || cand(fc_best.0));
         }
-        if self.layout.tool.is_some() && s_best.1 > self.metrics.max_stroke {
-            self.metrics.max_stroke = s_best.1;
-            self.s_peak.set(cand(s_best.0));
+        self.fc_peak.note_end(e1.f_c);
+        if self.layout.tool.is_some() {
+            if s_best.1 > self.metrics.max_stroke {
+                self.metrics.max_stroke = s_best.1;
+                self.s_peak.set(cand(s_best.0), s_best.1);
+            } else {
+                self.s_peak.offer(s_best.1, || cand(s_best.0));
+            }
+            self.s_peak.note_end(e1.s);
         }
         if self.record.is_some() {
             let mut pts = Vec::new();

@@ -8,6 +8,12 @@
 //! that step, or just after it in the next one. The next step is then kept as well and both
 //! sides are searched (a peak found only on the near side was up to 1e-3 low in bistable
 //! back-stop impacts).
+//!
+//! Two peaks of nearly the same height in different places (a bistable module's back-stop
+//! impact and a later one, 0.04 % apart) may be sampled in the wrong order: the one with the
+//! larger sample need not hold the larger peak. The largest sample of another peak within
+//! [`RIVAL`] of the best is kept as a rival and refined too (a peak is another one when the
+//! step ends have fallen more than `RIVAL` below the best since it).
 
 use crate::model::{Regime, MAX_STATES};
 use crate::physics::Segment;
@@ -53,21 +59,67 @@ impl PeakStep {
     }
 }
 
+/// Relative distance from the largest sample within which another peak is refined as well,
+/// and by which the step ends must fall below it for a later rise to be another peak.
+pub(crate) const RIVAL: f64 = 1e-2;
+
 /// Where one quantity's peak is: the step with its largest sample and, when that sample is the
-/// step's end, the step after it.
+/// step's end, the step after it; and the step with the largest sample of a rival peak.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PeakCandidate {
     pub at: Option<PeakStep>,
     pub after: Option<PeakStep>,
     wants_next: bool,
+    /// The largest sample (the one `at` holds).
+    best: f64,
+    /// A step has ended more than `RIVAL` below `best` since `at`.
+    dipped: bool,
+    /// Another peak's step (and the one after it, if kept) with its largest sample.
+    rival: Option<(PeakStep, Option<PeakStep>, f64)>,
 }
 
 impl PeakCandidate {
-    /// A new largest sample, in `step` at node `step.k`.
-    pub fn set(&mut self, step: PeakStep) {
+    /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
+    /// previous one becomes the rival if it was another peak, near enough.
+    pub fn set(&mut self, step: PeakStep, value: f64) {
+        if self.dipped && self.best >= value - RIVAL * value.abs() {
+            if let Some(old) = self.at.take() {
+                if self.rival.as_ref().is_none_or(|r| r.2 < self.best) {
+                    self.rival = Some((old, self.after.take(), self.best));
+                }
+            }
+        }
+        if self
+            .rival
+            .as_ref()
+            .is_some_and(|r| r.2 < value - RIVAL * value.abs())
+        {
+            self.rival = None;
+        }
         self.wants_next = step.k == K;
         self.at = Some(step);
         self.after = None;
+        self.best = value;
+        self.dipped = false;
+    }
+
+    /// A step whose largest sample `value` is not a new largest one: kept as the rival if it
+    /// belongs to another peak and comes near the best (`step` builds it).
+    pub fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
+        if self.at.is_some()
+            && self.dipped
+            && value >= self.best - RIVAL * self.best.abs()
+            && self.rival.as_ref().is_none_or(|r| r.2 < value)
+        {
+            self.rival = Some((step(), None, value));
+        }
+    }
+
+    /// The sample at a step's end (after `set` or `offer` for that step).
+    pub fn note_end(&mut self, value: f64) {
+        if value < self.best - RIVAL * self.best.abs() {
+            self.dipped = true;
+        }
     }
 
     /// Whether the step that follows should be kept (see [`Self::follow`]).
@@ -93,18 +145,36 @@ impl PeakCandidate {
         f_best: f64,
     ) -> Option<(f64, f64, &PeakStep)> {
         let c = self.at.as_ref()?;
-        let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-        let (t, v) = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
-        let mut best = (t, v, c);
-        if let Some(n) = &self.after {
-            // from the shared end point, a bracket end here
-            let (t, v) = brent_max(|t| f(n, t), n.ts[0], n.ts[1], (n.ts[0], f(n, n.ts[0])));
-            if v > best.1 {
-                best = (t, v, n);
+        let mut best = locate_in(c, self.after.as_ref(), &f, f_best);
+        if let Some((r, after, value)) = &self.rival {
+            let other = locate_in(r, after.as_ref(), &f, *value);
+            if other.1 > best.1 {
+                best = other;
             }
         }
         Some(best)
     }
+}
+
+/// The largest value of `f` around the sample `f_best` at node `c.k` of step `c`, and in the
+/// first sample interval of the step `after` it.
+fn locate_in<'a>(
+    c: &'a PeakStep,
+    after: Option<&'a PeakStep>,
+    f: &impl Fn(&PeakStep, f64) -> f64,
+    f_best: f64,
+) -> (f64, f64, &'a PeakStep) {
+    let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
+    let (t, v) = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
+    let mut best = (t, v, c);
+    if let Some(n) = after {
+        // from the shared end point, a bracket end here
+        let (t, v) = brent_max(|t| f(n, t), n.ts[0], n.ts[1], (n.ts[0], f(n, n.ts[0])));
+        if v > best.1 {
+            best = (t, v, n);
+        }
+    }
+    best
 }
 
 /// Largest value of `f` on `[lo, hi]` by Brent's method (golden-section steps, parabolic
