@@ -27,11 +27,13 @@ fn main() {
     let mut worst: Vec<(f64, String)> = vec![(0.0, String::new()); 5];
     let (mut steps_on, mut steps_off, mut tails, mut differ_counts) = (0u64, 0u64, 0, 0);
     for i in 0..n {
-        let mut s = Scene::default();
-        s.module = if i % 2 == 0 {
-            Module::Hydraulic
-        } else {
-            Module::Bistable
+        let mut s = Scene {
+            module: if i % 2 == 0 {
+                Module::Hydraulic
+            } else {
+                Module::Bistable
+            },
+            ..Scene::default()
         };
         s.robot.dead_time = u.span(0.0, 0.1);
         s.robot.brake_deceleration = u.span(5.0, 25.0);

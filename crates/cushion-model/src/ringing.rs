@@ -329,8 +329,8 @@ mod tests {
             k3: 0.0,
         };
         let r = Ringing::through(&c, 0.0, 0.01, -0.2).unwrap();
-        let (w0, lambda) = (5.0, 0.075);
-        let wd = (w0 * w0 - lambda * lambda as f64).sqrt();
+        let (w0, lambda): (f64, f64) = (5.0, 0.075);
+        let wd = (w0 * w0 - lambda * lambda).sqrt();
         // closed form of the linear oscillator
         let (a, b) = (0.01, (-0.2 + lambda * 0.01) / wd);
         for t in [0.0, 0.3, 1.7, 6.0] {

@@ -797,7 +797,7 @@ fn ringing_tail_is_not_taken_where_it_cannot_hold() {
     // a tighter tolerance takes the tail later, or not at all
     let (t_loose, t_tight) = (te(&loose).unwrap(), te(&tight));
     assert!(
-        t_tight.map_or(true, |t| t > t_loose + 0.02),
+        t_tight.is_none_or(|t| t > t_loose + 0.02),
         "{t_tight:?} {t_loose}"
     );
 }

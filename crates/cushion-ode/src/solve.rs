@@ -316,9 +316,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.stats.rhs_evals += stepper.rhs_evals_per_step();
             let finite = attempt.y1.iter().all(|v| v.is_finite())
                 && attempt.f1.iter().all(|v| v.is_finite())
-                && attempt
-                    .err
-                    .map_or(true, |e| e.iter().all(|v| v.is_finite()));
+                && attempt.err.is_none_or(|e| e.iter().all(|v| v.is_finite()));
             if !finite {
                 if !adaptive {
                     let msg =

@@ -9,6 +9,7 @@ pub const MU: f64 = 0.012277471;
 pub const PERIOD: f64 = 17.065_216_560_157_962_558_891_720_624_9;
 
 /// The initial state `(y1, y2, y1', y2')`.
+#[allow(clippy::excessive_precision)] // the digits as Hairer publishes them
 pub fn initial_state() -> State<4> {
     State::<4>::new(0.994, 0.0, 0.0, -2.001_585_106_379_082_522_420_537_862_224)
 }

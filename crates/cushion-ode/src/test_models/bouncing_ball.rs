@@ -50,7 +50,7 @@ impl OdeSystem<2> for BouncingBall {
     ) -> EventAction {
         self.bounces += 1;
         y[0] = 0.0;
-        y[1] = -self.restitution * y[1];
+        y[1] *= -self.restitution;
         if self.stop_after > 0 && self.bounces >= self.stop_after {
             EventAction::Stop
         } else {
