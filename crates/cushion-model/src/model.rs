@@ -1149,29 +1149,26 @@ impl Model {
                 c.follow(cand(0));
             }
         }
-        if fr_best.1.abs() > self.metrics.peak_fr.abs() {
+        let new_fr = fr_best.1.abs() > self.metrics.peak_fr.abs();
+        if new_fr {
             self.metrics.peak_fr = fr_best.1;
             self.metrics.t_peak_fr = tk(fr_best.0);
-            self.fr_peak.set(cand(fr_best.0), fr_best.1.abs());
-        } else {
-            self.fr_peak.offer(fr_best.1.abs(), || cand(fr_best.0));
         }
-        self.fr_peak.note_end(e1.f_r.abs());
-        if fc_best.1 > self.metrics.peak_fc {
+        let (v, end) = (fr_best.1.abs(), e1.f_r.abs());
+        self.fr_peak.observe(new_fr, v, end, || cand(fr_best.0));
+        let new_fc = fc_best.1 > self.metrics.peak_fc;
+        if new_fc {
             self.metrics.peak_fc = fc_best.1;
-            self.fc_peak.set(cand(fc_best.0), fc_best.1);
-        } else {
-            self.fc_peak.offer(fc_best.1, || cand(fc_best.0));
         }
-        self.fc_peak.note_end(e1.f_c);
+        self.fc_peak
+            .observe(new_fc, fc_best.1, e1.f_c, || cand(fc_best.0));
         if self.layout.tool.is_some() {
-            if s_best.1 > self.metrics.max_stroke {
+            let new_s = s_best.1 > self.metrics.max_stroke;
+            if new_s {
                 self.metrics.max_stroke = s_best.1;
-                self.s_peak.set(cand(s_best.0), s_best.1);
-            } else {
-                self.s_peak.offer(s_best.1, || cand(s_best.0));
             }
-            self.s_peak.note_end(e1.s);
+            self.s_peak
+                .observe(new_s, s_best.1, e1.s, || cand(s_best.0));
         }
         if self.record.is_some() {
             let mut pts = Vec::new();

@@ -81,7 +81,7 @@ pub(crate) struct PeakCandidate {
 impl PeakCandidate {
     /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
     /// previous one becomes the rival if it was another peak, near enough.
-    pub fn set(&mut self, step: PeakStep, value: f64) {
+    fn set(&mut self, step: PeakStep, value: f64) {
         if self.dipped && self.best >= value - RIVAL * value.abs() {
             if let Some(old) = self.at.take() {
                 if self.rival.as_ref().is_none_or(|r| r.2 < self.best) {
@@ -105,7 +105,7 @@ impl PeakCandidate {
 
     /// A step whose largest sample `value` is not a new largest one: kept as the rival if it
     /// belongs to another peak and comes near the best (`step` builds it).
-    pub fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
+    fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
         if self.at.is_some()
             && self.dipped
             && value >= self.best - RIVAL * self.best.abs()
@@ -115,8 +115,19 @@ impl PeakCandidate {
         }
     }
 
+    /// One step: its largest sample `value`, a new largest one if `is_new`, in the step that
+    /// `step` builds, and the sample `end` at its end.
+    pub fn observe(&mut self, is_new: bool, value: f64, end: f64, step: impl FnOnce() -> PeakStep) {
+        if is_new {
+            self.set(step(), value);
+        } else {
+            self.offer(value, step);
+        }
+        self.note_end(end);
+    }
+
     /// The sample at a step's end (after `set` or `offer` for that step).
-    pub fn note_end(&mut self, value: f64) {
+    fn note_end(&mut self, value: f64) {
         if value < self.best - RIVAL * self.best.abs() {
             self.dipped = true;
         }
