@@ -502,7 +502,7 @@ impl Model {
             ringing_cache: Vec::new(),
             fr_peak: PeakCandidate::default(),
             fc_peak: PeakCandidate::default(),
-            s_peak: PeakCandidate::default(),
+            s_peak: PeakCandidate::starting_at(s0),
             last_sample: None,
             force_sample: 0,
             early_end_enabled: scene.solver.early_end,
@@ -527,6 +527,8 @@ impl Model {
         let e0 = m.eval(0.0, &y0, m.robot.current(), &m.regime);
         m.metrics.peak_fr = e0.f_r;
         m.metrics.peak_fc = e0.f_c;
+        m.fr_peak = PeakCandidate::starting_at(e0.f_r.abs());
+        m.fc_peak = PeakCandidate::starting_at(e0.f_c);
         m.metrics.max_p1 = e0.p1;
         m.y0 = y0;
         m
@@ -1149,26 +1151,16 @@ impl Model {
                 c.follow(cand(0));
             }
         }
-        let new_fr = fr_best.1.abs() > self.metrics.peak_fr.abs();
-        if new_fr {
+        let (v, end) = (fr_best.1.abs(), e1.f_r.abs());
+        if self.fr_peak.observe(v, end, || cand(fr_best.0)) {
             self.metrics.peak_fr = fr_best.1;
             self.metrics.t_peak_fr = tk(fr_best.0);
         }
-        let (v, end) = (fr_best.1.abs(), e1.f_r.abs());
-        self.fr_peak.observe(new_fr, v, end, || cand(fr_best.0));
-        let new_fc = fc_best.1 > self.metrics.peak_fc;
-        if new_fc {
+        if self.fc_peak.observe(fc_best.1, e1.f_c, || cand(fc_best.0)) {
             self.metrics.peak_fc = fc_best.1;
         }
-        self.fc_peak
-            .observe(new_fc, fc_best.1, e1.f_c, || cand(fc_best.0));
-        if self.layout.tool.is_some() {
-            let new_s = s_best.1 > self.metrics.max_stroke;
-            if new_s {
-                self.metrics.max_stroke = s_best.1;
-            }
-            self.s_peak
-                .observe(new_s, s_best.1, e1.s, || cand(s_best.0));
+        if self.layout.tool.is_some() && self.s_peak.observe(s_best.1, e1.s, || cand(s_best.0)) {
+            self.metrics.max_stroke = s_best.1;
         }
         if self.record.is_some() {
             let mut pts = Vec::new();

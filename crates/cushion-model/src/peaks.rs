@@ -70,7 +70,7 @@ pub(crate) struct PeakCandidate {
     pub at: Option<PeakStep>,
     pub after: Option<PeakStep>,
     wants_next: bool,
-    /// The largest sample (the one `at` holds).
+    /// The largest sample (the one `at` holds), or the value at the start.
     best: f64,
     /// A step has ended more than `RIVAL` below `best` since `at`.
     dipped: bool,
@@ -79,6 +79,14 @@ pub(crate) struct PeakCandidate {
 }
 
 impl PeakCandidate {
+    /// No step kept yet; `best` is the value at the start, which a peak must exceed.
+    pub fn starting_at(best: f64) -> PeakCandidate {
+        PeakCandidate {
+            best,
+            ..PeakCandidate::default()
+        }
+    }
+
     /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
     /// previous one becomes the rival if it was another peak, near enough.
     fn set(&mut self, step: PeakStep, value: f64) {
@@ -115,15 +123,17 @@ impl PeakCandidate {
         }
     }
 
-    /// One step: its largest sample `value`, a new largest one if `is_new`, in the step that
-    /// `step` builds, and the sample `end` at its end.
-    pub fn observe(&mut self, is_new: bool, value: f64, end: f64, step: impl FnOnce() -> PeakStep) {
+    /// One step: its largest sample `value`, in the step that `step` builds, and the sample
+    /// `end` at its end. Returns whether `value` is a new largest sample.
+    pub fn observe(&mut self, value: f64, end: f64, step: impl FnOnce() -> PeakStep) -> bool {
+        let is_new = value > self.best;
         if is_new {
             self.set(step(), value);
         } else {
             self.offer(value, step);
         }
         self.note_end(end);
+        is_new
     }
 
     /// The sample at a step's end (after `set` or `offer` for that step).
