@@ -44,6 +44,11 @@ fn run_traj(s: &Scene, dt: f64) -> RunResult {
     r
 }
 
+/// When the run's first event named `name` happened (s), if it did.
+fn event_time(r: &RunResult, name: &str) -> Option<f64> {
+    r.events.iter().find(|e| e.name == name).map(|e| e.t)
+}
+
 /// The module force on the tool `G`, computed here from a trajectory point and the scene alone
 /// (independent of the model's code paths); `F_r` must be `-G`.
 fn module_force(s: &Scene, p: &TrajectoryPoint) -> f64 {
@@ -276,20 +281,10 @@ fn claim_1_hydraulic_dt70_shape() {
             .unwrap()
     };
     // at impact the tool slows down
-    let begin = r
-        .events
-        .iter()
-        .find(|e| e.name == "object_contact_begin")
-        .unwrap()
-        .t;
+    let begin = event_time(&r, "object_contact_begin").unwrap();
     assert!(at(begin + 3e-3).v_t < 0.7);
     // then tool and object move together (in contact, same speed) until after braking begins
-    let end = r
-        .events
-        .iter()
-        .find(|e| e.name == "object_contact_end")
-        .unwrap()
-        .t;
+    let end = event_time(&r, "object_contact_end").unwrap();
     assert!(end > t_brake);
     for t in [0.03, 0.05, t_brake - 1e-3] {
         let p = at(t);
@@ -317,12 +312,7 @@ fn claim_1_hydraulic_dt70_shape() {
     assert!(at(t_brake + 0.02).p1 < at(t_brake).p1 - 50.0);
     // two main peaks of opposite sign: the impact, and the tool returning onto the forward stop
     assert!(sm.peak_robot_force < 0.0 && sm.t_peak_robot_force < begin + 5e-3);
-    let back_on_stop = r
-        .events
-        .iter()
-        .find(|e| e.name == "forward_stop_begin")
-        .unwrap()
-        .t;
+    let back_on_stop = event_time(&r, "forward_stop_begin").unwrap();
     let pos = pts
         .iter()
         .filter(|p| p.t > back_on_stop)
@@ -377,12 +367,7 @@ fn claim_4_dt10_bistable_leaves_object_slower_and_peaks_at_back_stop() {
         .filter(|e| e.name == "object_contact_begin")
         .any(|e| e.t > t_brake));
     // small first peak at impact, larger ones on the back stop
-    let first_back = rb
-        .events
-        .iter()
-        .find(|e| e.name == "back_stop_begin")
-        .unwrap()
-        .t;
+    let first_back = event_time(&rb, "back_stop_begin").unwrap();
     let pts = &rb.trajectory.as_ref().unwrap().points;
     let impact_peak = pts
         .iter()
@@ -410,12 +395,7 @@ fn rigid_peak_force_exceeds_both_modules() {
     }
     // rigid: detection at first contact
     let r = run(&paper("paper-rigid"));
-    let first = r
-        .events
-        .iter()
-        .find(|e| e.name == "object_contact_begin")
-        .unwrap()
-        .t;
+    let first = event_time(&r, "object_contact_begin").unwrap();
     assert_eq!(r.summary.t_detect, Some(first));
     assert!((first - 1e-3).abs() < 1e-12);
 }
@@ -685,11 +665,7 @@ fn ringing_tail_equals_running_to_t_end() {
         );
         let tail = run_traj(&s, 1e-3);
         let full = run_traj(&with(s.clone(), &[("solver.ringing_tail", "false")]), 1e-3);
-        let te = tail
-            .events
-            .iter()
-            .find(|e| e.name == "early_end")
-            .map(|e| e.t);
+        let te = event_time(&tail, "early_end");
         assert!(te.is_some(), "{what}: no ringing tail");
         let (a, b) = (&tail.summary, &full.summary);
         assert!(
@@ -793,7 +769,7 @@ fn ringing_tail_is_not_taken_where_it_cannot_hold() {
     }
     let loose = run(&paper("paper-hydraulic-dt70"));
     let tight = run(&tight(paper("paper-hydraulic-dt70")));
-    let te = |r: &RunResult| r.events.iter().find(|e| e.name == "early_end").map(|e| e.t);
+    let te = |r: &RunResult| event_time(r, "early_end");
     // a tighter tolerance takes the tail later, or not at all
     let (t_loose, t_tight) = (te(&loose).unwrap(), te(&tight));
     assert!(
@@ -814,7 +790,7 @@ fn dry_friction_stick_slip_by_events() {
         names.contains(&"tool_slip") && names.contains(&"tool_stick"),
         "{names:?}"
     );
-    let stick = r.events.iter().find(|e| e.name == "tool_stick").unwrap().t;
+    let stick = event_time(&r, "tool_stick").unwrap();
     // while stuck the tool moves with the robot exactly and the stroke does not change
     let pts: Vec<_> = r
         .trajectory
@@ -947,12 +923,7 @@ fn a_contact_released_before_the_bodies_part_converges_with_the_tolerance() {
     );
     let reference = run_traj(&tight(base.clone()), 1e-4);
     // the force is zero while the bodies still overlap: a released contact
-    let end = reference
-        .events
-        .iter()
-        .find(|e| e.name == "object_contact_end")
-        .unwrap()
-        .t;
+    let end = event_time(&reference, "object_contact_end").unwrap();
     let released = reference
         .trajectory
         .as_ref()
