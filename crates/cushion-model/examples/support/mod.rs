@@ -37,3 +37,5 @@ pub fn draw_module_axes(s: &mut Scene, u: &mut Uniform) {
     s.hydraulic.orifice_radius = u.span(0.002, 0.010);
     s.object.mass = u.span(0.05, 0.95);
 }
+
+pub mod wide;
