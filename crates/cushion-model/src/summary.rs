@@ -71,7 +71,8 @@ pub struct Summary {
     pub back_stop_hit: bool,
     /// Largest gas pressure `p1` (`None` without gas).
     pub max_gas_pressure: Option<f64>,
-    /// Energy ledger mismatch over its largest term (`None` with the ledger off).
+    /// Energy ledger mismatch over its largest term, the energies held at the start and at the
+    /// end counted ([`crate::EnergyLedger::residual`]; `None` with the ledger off).
     pub energy_residual: Option<f64>,
     pub stats: SolverStats,
 }
