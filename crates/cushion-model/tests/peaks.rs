@@ -114,3 +114,66 @@ fn the_larger_of_two_nearly_equal_peaks_is_found() {
         );
     }
 }
+
+#[test]
+fn a_force_that_jumps_when_the_robot_stops_is_its_peak() {
+    // A rigid tool (the flange itself) still presses a heavy object on a soft contact when the
+    // robot stops braking: `F_r = -(m_t a_r + F_c)` jumps there by `m_t a_brake` = 7.5 N, from
+    // -10.2 N to -17.70 N, and falls after it as the contact unloads. The largest |F_r| is
+    // the first value after the stop, which no sample inside a step sees; the runs at rtol
+    // 1e-5 to 1e-7 reported the braking phase's peak, 17.36 N, instead (found by
+    // `examples/wide_accuracy.rs`, scene 1319).
+    let scene = |rtol: &str| {
+        let mut s = Scene::default();
+        for (k, v) in [
+            ("module", "rigid"),
+            ("robot.approach_speed", "0.77"),
+            ("robot.brake_deceleration", "44"),
+            ("robot.dead_time", "0.0006"),
+            ("tool.mass", "0.17"),
+            ("object.mass", "0.9"),
+            ("object.gap", "1.4e-3"),
+            ("object.contact_stiffness", "5.8e4"),
+            ("object.contact_damping", "1.3e4"),
+            ("solver.rtol", rtol),
+            ("solver.atol", "1e-14"),
+        ] {
+            s.set_from_str(k, v).unwrap();
+        }
+        let r = simulate(&s, &RunOptions::default());
+        assert_eq!(r.summary.status, RunStatus::Ok, "{}", r.summary.message);
+        let stop = r
+            .events
+            .iter()
+            .find(|e| e.name == "robot_stopped")
+            .unwrap()
+            .t;
+        let contact_end = r
+            .events
+            .iter()
+            .find(|e| e.name == "object_contact_end")
+            .unwrap()
+            .t;
+        (r.summary, stop, contact_end)
+    };
+    let (reference, stop, contact_end) = scene("1e-11");
+    // the robot stops while the contact lasts, and the peak is the value right after it
+    assert!(stop < contact_end, "{stop} {contact_end}");
+    assert_eq!(reference.t_peak_robot_force, stop);
+    let before = reference.peak_robot_force + 0.17 * 44.0;
+    assert!(
+        reference.peak_robot_force < -17.0 && before > -10.5,
+        "{reference:?}"
+    );
+    for rtol in ["1e-5", "1e-6", "1e-7"] {
+        let (a, stop_a, _) = scene(rtol);
+        assert_eq!(a.t_peak_robot_force, stop_a, "rtol {rtol}");
+        let e = rel(a.peak_robot_force, reference.peak_robot_force);
+        assert!(
+            e < 1e-6,
+            "rtol {rtol}: {} vs {}",
+            a.peak_robot_force,
+            reference.peak_robot_force
+        );
+    }
+}

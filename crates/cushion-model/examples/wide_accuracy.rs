@@ -1,0 +1,115 @@
+//! Accuracy far from the paper's scenes: the wide random scenes of `support/wide.rs`, each run
+//! at the default tolerance (rtol 1e-6, atol 1e-9) and at rtol 1e-11 (atol 1e-14) as the
+//! reference. Prints, over the scenes that detect an impact, the median, 99th percentile and
+//! largest error of each summary value relative to its scale (speeds to `v_max`, the impulse to
+//! the larger of itself and `(m_t + m_p) v_max`, the peak force to itself, the stroke to the stroke length, the
+//! detection time to `t_end`), how many runs' impact counts differ, and the worst scenes:
+//! `wide_accuracy [N] [SEED]` (print a scene with `wide_scenes N SEED K`: the same draw).
+use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+
+mod support;
+use support::wide::{draw, Corners};
+
+fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
+    let mut s = s.clone();
+    s.solver.rtol = rtol;
+    s.solver.atol = atol;
+    simulate(&s, &RunOptions::default()).summary
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
+    let seed: u64 = args
+        .next()
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(0x5DEECE66D);
+    let mut u = support::Uniform::new(seed);
+    let names = [
+        "object_final_velocity",
+        "robot_impulse",
+        "peak_robot_force",
+        "max_stroke",
+        "t_detect",
+    ];
+    let mut errors: Vec<Vec<(f64, usize)>> = vec![Vec::new(); names.len()];
+    let (mut compared, mut counts_differ, mut not_ok) = (0, Vec::new(), Vec::new());
+    for i in 0..n {
+        let s = draw(&mut u, Corners::NONE);
+        let a = run(&s, 1e-6, 1e-9);
+        let b = run(&s, 1e-11, 1e-14);
+        if a.status != RunStatus::Ok || b.status != RunStatus::Ok {
+            not_ok.push(format!(
+                "{i}: {:?} / {:?} {}{}",
+                a.status, b.status, a.message, b.message
+            ));
+            continue;
+        }
+        if b.t_detect.is_none() {
+            continue;
+        }
+        compared += 1;
+        let v = s.robot.approach_speed;
+        let m = s.tool.mass + if s.object.enabled { s.object.mass } else { 0.0 };
+        let speed = |x: &Summary| x.object_final_velocity.unwrap_or(0.0);
+        let detect = |x: &Summary| x.t_detect.unwrap_or(f64::INFINITY);
+        let e = [
+            (speed(&a) - speed(&b)).abs() / v,
+            (a.robot_impulse - b.robot_impulse).abs() / (m * v).max(b.robot_impulse.abs()),
+            (a.peak_robot_force - b.peak_robot_force).abs() / b.peak_robot_force.abs(),
+            (a.max_stroke - b.max_stroke).abs() / s.stops.stroke,
+            (detect(&a) - detect(&b)).abs() / s.t_end,
+        ];
+        for (k, x) in e.iter().enumerate() {
+            errors[k].push((if x.is_nan() { f64::INFINITY } else { *x }, i));
+        }
+        if (
+            a.object_impacts,
+            a.forward_stop_impacts,
+            a.back_stop_impacts,
+        ) != (
+            b.object_impacts,
+            b.forward_stop_impacts,
+            b.back_stop_impacts,
+        ) {
+            counts_differ.push(i);
+        }
+    }
+    println!(
+        "{n} scenes, {compared} detect an impact (compared at rtol 1e-6 against 1e-11), {} not ok",
+        not_ok.len()
+    );
+    println!(
+        "{:<22} {:>9} {:>9} {:>9}  worst scenes",
+        "", "median", "p99", "largest"
+    );
+    for (k, name) in names.iter().enumerate() {
+        let v = &mut errors[k];
+        v.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if v.is_empty() {
+            continue;
+        }
+        let q = |p: f64| v[((v.len() - 1) as f64 * p).round() as usize].0;
+        let worst: Vec<String> = v
+            .iter()
+            .rev()
+            .take(4)
+            .map(|(x, i)| format!("{i} ({x:.1e})"))
+            .collect();
+        println!(
+            "{name:<22} {:>9.1e} {:>9.1e} {:>9.1e}  {}",
+            q(0.5),
+            q(0.99),
+            q(1.0),
+            worst.join(", ")
+        );
+    }
+    println!(
+        "impact counts differ in {} runs: {:?}",
+        counts_differ.len(),
+        counts_differ
+    );
+    for line in &not_ok {
+        println!("  {line}");
+    }
+}
