@@ -29,6 +29,8 @@ fn main() {
         "object_final_velocity",
         "robot_impulse",
         "peak_robot_force",
+        "peak_contact_force",
+        "max_gas_pressure",
         "max_stroke",
         "t_detect",
     ];
@@ -57,6 +59,12 @@ fn main() {
             (speed(&a) - speed(&b)).abs() / v,
             (a.robot_impulse - b.robot_impulse).abs() / (m * v).max(b.robot_impulse.abs()),
             (a.peak_robot_force - b.peak_robot_force).abs() / b.peak_robot_force.abs(),
+            (a.peak_contact_force - b.peak_contact_force).abs()
+                / b.peak_contact_force.abs().max(1e-3),
+            match (a.max_gas_pressure, b.max_gas_pressure) {
+                (Some(x), Some(y)) => (x - y).abs() / y.abs(),
+                _ => 0.0,
+            },
             (a.max_stroke - b.max_stroke).abs() / s.stops.stroke,
             (detect(&a) - detect(&b)).abs() / s.t_end,
         ];
