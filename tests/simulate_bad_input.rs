@@ -94,6 +94,15 @@ fn nan_and_infinite_values() {
 }
 
 #[test]
+fn tolerance_out_of_range() {
+    // no step meets rtol <= 10 eps; rtol >= 1 asks for no digit
+    for v in ["1e-300", "2e-15", "1", "1e30", "-1e-6", "0"] {
+        let set = format!("solver.rtol={v}");
+        rejected(&["--set", &set], &["solver.rtol", "(10 eps"]);
+    }
+}
+
+#[test]
 fn unknown_key() {
     rejected(&["--set", "robot.dead_tme=0.01"], &["robot.dead_tme"]);
     rejected(&["--set", "dead_time=0.01"], &["dead_time"]);

@@ -214,7 +214,7 @@ pub struct Bistable {
 pub struct Solver {
     /// `solver.method`: `"dp5"` (adaptive), `"rk4"` or `"euler"` (fixed step).
     pub method: Method,
-    /// `solver.rtol`: relative tolerance, - (> 0).
+    /// `solver.rtol`: relative tolerance, - (in (10 eps, 1), eps = 2.2e-16).
     pub rtol: f64,
     /// `solver.atol`: absolute tolerance, in each state's unit (> 0).
     pub atol: f64,
@@ -343,6 +343,9 @@ fn format_float(f: f64) -> String {
         } else {
             "-inf".into()
         }
+    } else if f != 0.0 && (f.abs() < 1e-4 || f.abs() >= 1e16) {
+        // `1e-300`, not three hundred zeros
+        format!("{f:e}")
     } else {
         format!("{f}")
     }
@@ -803,7 +806,15 @@ impl Scene {
             ));
         }
         let s = &self.solver;
-        pos("solver.rtol", s.rtol)?;
+        // Hairer's DOPRI5 refuses rtol <= 10 eps (no step can meet it); 1 or more asks for no
+        // digit at all
+        if !(s.rtol > 10.0 * f64::EPSILON && s.rtol < 1.0) {
+            return Err(invalid(
+                "solver.rtol",
+                s.rtol,
+                "must lie in (10 eps = 2.2e-15, 1)",
+            ));
+        }
         pos("solver.atol", s.atol)?;
         if s.max_steps < 1 {
             return Err(ConfigError::InvalidValue {
