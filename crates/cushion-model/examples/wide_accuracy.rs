@@ -8,7 +8,7 @@
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
 mod support;
-use support::wide::{draw, Corners};
+use support::wide::{draw, impact_counts, Corners};
 
 fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
     let mut s = s.clone();
@@ -71,15 +71,7 @@ fn main() {
         for (k, x) in e.iter().enumerate() {
             errors[k].push((if x.is_nan() { f64::INFINITY } else { *x }, i));
         }
-        if (
-            a.object_impacts,
-            a.forward_stop_impacts,
-            a.back_stop_impacts,
-        ) != (
-            b.object_impacts,
-            b.forward_stop_impacts,
-            b.back_stop_impacts,
-        ) {
+        if impact_counts(&a) != impact_counts(&b) {
             counts_differ.push(i);
         }
     }

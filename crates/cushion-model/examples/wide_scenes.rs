@@ -11,7 +11,7 @@
 use cushion_model::{simulate, RunOptions, RunStatus};
 
 mod support;
-use support::wide::draw;
+use support::wide::{draw, impact_counts};
 
 /// `|a - b| / scale`, 0 when both are the same (also both NaN or both None).
 fn off(a: Option<f64>, b: Option<f64>, scale: f64) -> f64 {
@@ -120,15 +120,7 @@ fn main() {
             off(Some(a.max_stroke), Some(b.max_stroke), s.stops.stroke),
             off(a.t_detect, b.t_detect, s.t_end),
         ];
-        let counts_differ = (
-            a.object_impacts,
-            a.forward_stop_impacts,
-            a.back_stop_impacts,
-        ) != (
-            b.object_impacts,
-            b.forward_stop_impacts,
-            b.back_stop_impacts,
-        );
+        let counts_differ = impact_counts(&a) != impact_counts(&b);
         // Against the tolerance, over the scenes that detect the impact: in the others the
         // forces are often of the size of the integration error itself (the tool riding along
         // at rest, F_r = 0 up to it), and at loose tolerances a full run's noise may even open

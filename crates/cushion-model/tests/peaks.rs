@@ -142,18 +142,8 @@ fn a_force_that_jumps_when_the_robot_stops_is_its_peak() {
         }
         let r = simulate(&s, &RunOptions::default());
         assert_eq!(r.summary.status, RunStatus::Ok, "{}", r.summary.message);
-        let stop = r
-            .events
-            .iter()
-            .find(|e| e.name == "robot_stopped")
-            .unwrap()
-            .t;
-        let contact_end = r
-            .events
-            .iter()
-            .find(|e| e.name == "object_contact_end")
-            .unwrap()
-            .t;
+        let at = |name: &str| r.events.iter().find(|e| e.name == name).unwrap().t;
+        let (stop, contact_end) = (at("robot_stopped"), at("object_contact_end"));
         (r.summary, stop, contact_end)
     };
     let (reference, stop, contact_end) = scene("1e-11");

@@ -11,7 +11,7 @@
 mod support;
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
-use support::wide::{draw, Corners};
+use support::wide::{draw, impact_counts, Corners};
 use support::Uniform;
 
 fn finite(s: &Summary) -> bool {
@@ -97,19 +97,7 @@ fn wide_scenes_end_ok_and_the_early_end_changes_nothing() {
             );
         }
         assert_eq!(a.t_detect, b.t_detect, "{what}");
-        assert_eq!(
-            (
-                a.object_impacts,
-                a.forward_stop_impacts,
-                a.back_stop_impacts
-            ),
-            (
-                b.object_impacts,
-                b.forward_stop_impacts,
-                b.back_stop_impacts
-            ),
-            "{what}"
-        );
+        assert_eq!(impact_counts(&a), impact_counts(&b), "{what}");
     }
     // the draw is not all idle scenes
     assert!(detected >= 100, "{detected} of 400 detect the impact");

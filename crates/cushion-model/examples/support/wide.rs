@@ -3,7 +3,16 @@
 
 use super::Uniform;
 use cushion_model::config::RobotStart;
-use cushion_model::{Module, Scene};
+use cushion_model::{Module, Scene, Summary};
+
+/// A run's impact counts: tool-object, forward stop, back stop.
+pub fn impact_counts(s: &Summary) -> (u32, u32, u32) {
+    (
+        s.object_impacts,
+        s.forward_stop_impacts,
+        s.back_stop_impacts,
+    )
+}
 
 impl Uniform {
     /// Uniform in `[lo, hi)`.
