@@ -80,11 +80,14 @@ fn main() {
             fixed += 1;
             continue;
         }
+        // flagged beyond 1000 rtol (NaN too)
+        let limit = 1e3 * s.solver.rtol;
+        let beyond = |d: f64| d > limit || d.is_nan();
         if let Some(r) = a.energy_residual {
             if r / s.solver.rtol > worst_residual.0 {
                 worst_residual = (r / s.solver.rtol, i);
             }
-            if r > 1e3 * s.solver.rtol {
+            if beyond(r) {
                 flagged.push(format!(
                     "{i}: energy_residual {r:.2e} at rtol {:.0e} ({}, detected {}, object touched {})",
                     s.solver.rtol,
@@ -126,8 +129,7 @@ fn main() {
         // at rest, F_r = 0 up to it), and at loose tolerances a full run's noise may even open
         // a stiff stop; those are counted apart.
         if a.t_detect.is_none() {
-            idle_differ +=
-                usize::from(counts_differ || diffs.iter().any(|d| *d > 1e3 * s.solver.rtol));
+            idle_differ += usize::from(counts_differ || diffs.iter().any(|d| beyond(*d)));
             continue;
         }
         for (k, d) in diffs.iter().enumerate() {
@@ -135,8 +137,6 @@ fn main() {
                 worst[k] = (*d / s.solver.rtol, i);
             }
         }
-        let limit = 1e3 * s.solver.rtol;
-        let beyond = |d: f64| d > limit || d.is_nan();
         if counts_differ || diffs.iter().any(|d| beyond(*d)) {
             let what: Vec<String> = diffs
                 .iter()

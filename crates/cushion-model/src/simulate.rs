@@ -201,12 +201,10 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
     // the energies held at either end included: in a scene where nothing happens (no impact,
     // the tool riding along at rest) the work and the changes are all of rounding size, and
     // their mismatch over the largest of them alone would be noise over noise (~1).
-    let mut scale = [w, d_ke, d_gas, d_el, ke0, ke1, g0, g1, e0, e1]
-        .iter()
+    let scale = [w, d_ke, d_gas, d_el, ke0, ke1, g0, g1, e0, e1]
+        .into_iter()
+        .chain(ds.iter().flatten().map(|&k| y[k]))
         .fold(0.0f64, |m, x| m.max(x.abs()));
-    for k in ds.iter().flatten() {
-        scale = scale.max(y[*k].abs());
-    }
     let mismatch = w - (d_ke + d_gas + d_el + d_total);
     let residual = if scale > 0.0 {
         mismatch.abs() / scale
