@@ -8,8 +8,9 @@
 //! `c_0 = 1`, `c_k = c_(k-1) (kappa + k - 1) / k` (binomial series). For `|u| <= U_MAX`
 //! the terms left out weigh less than 1e-18 of the sum for every allowed `kappa` (1 to 2);
 //! farther out the law is evaluated exactly and `s_n` moves there. The value then differs from
-//! `powf` by at most about 8 units in the last place (the exact law: 2.4), and the
-//! right-hand side spends about 35 instructions on the gas instead of about 105 (`ln`, `exp`).
+//! `powf` by at most about 9 units in the last place (the exact law: 2.4), and the
+//! right-hand side spends about 40 instructions on the gas instead of about 105 (`ln`, `exp`),
+//! in a chain of five dependent multiply-adds (Estrin's scheme, below).
 //! The anchor depends on the evaluations before, so a value may differ in its last bits from
 //! one run's history to another's; a run is still reproducible to the bit.
 use std::cell::Cell;
@@ -73,11 +74,19 @@ impl GasLaw {
         let a = self.anchor.get();
         let u = a.a_over_v * (s - a.s);
         if u.abs() <= U_MAX {
+            // Estrin's scheme: powers u^2, u^4, u^8 and pairs of terms, a chain of five dependent
+            // multiply-adds where Horner's rule has twelve. The stages of a step wait on one
+            // another's right-hand side, so the depth of this chain, not the count of its
+            // operations, is what the run's time sees: the paper's hydraulic scene runs about
+            // 15 % faster so (bench/README-model.md, session 10), with 3 % more instructions.
             let c = &self.coef;
-            let mut sum = c[TERMS];
-            for k in (0..TERMS).rev() {
-                sum = sum * u + c[k];
-            }
+            let u2 = u * u;
+            let u4 = u2 * u2;
+            let u8 = u4 * u4;
+            let r0 = (c[0] + c[1] * u) + (c[2] + c[3] * u) * u2;
+            let r1 = (c[4] + c[5] * u) + (c[6] + c[7] * u) * u2;
+            let r2 = (c[8] + c[9] * u) + (c[10] + c[11] * u) * u2;
+            let sum = (r0 + r1 * u4) + (r2 + c[12] * u4) * u8;
             a.p * sum
         } else {
             self.move_anchor(s)
@@ -134,7 +143,7 @@ mod tests {
                     s += stride;
                 }
             }
-            // measured: 4.7 to 8.3 ulp (the exact law itself: 1.0 to 2.4), the largest where the
+            // measured: 5.4 to 9.3 ulp (the exact law itself: 1.0 to 2.4), the largest where the
             // gas is compressed to a fifth of its volume
             assert!(worst <= 10.0, "kappa {kappa}: {worst} ulp");
             assert!(
