@@ -266,6 +266,53 @@ const EV_CAVITATION: u8 = 6;
 const EV_OBJ_RELEASE: u8 = 7;
 const EV_STOP_RELEASE: u8 = 8;
 
+/// Which event functions a scene has. [`EventSet::visit`] lists their kinds in one fixed order,
+/// the order of `Model::events` (their indices for the integrator).
+#[derive(Clone, Copy, Debug)]
+struct EventSet {
+    /// Sensor, both end-stops and the stop release (hydraulic and bistable).
+    tool: bool,
+    /// Tool-object contact and its release.
+    object: bool,
+    /// Stick and slip of the tool (`tool.dry_friction > 0`).
+    tool_stick: bool,
+    /// Stick and slip of the object (plane friction).
+    object_stick: bool,
+    cavitation: bool,
+}
+
+impl EventSet {
+    /// Call `f` with each kind the scene has, in index order. Inlined, each call's kind is a
+    /// constant, so `f` can resolve its `match` on the kind at compile time: evaluating the
+    /// functions this way takes a fixed series of branches that go the same way for the whole
+    /// run, where a loop over `events` took an indirect jump per function to a different place
+    /// each time.
+    #[inline(always)]
+    fn visit(&self, mut f: impl FnMut(u8)) {
+        if self.tool {
+            f(EV_SENSOR);
+        }
+        if self.object {
+            f(EV_OBJECT);
+            f(EV_OBJ_RELEASE);
+        }
+        if self.tool {
+            f(EV_FWD);
+            f(EV_BACK);
+            f(EV_STOP_RELEASE);
+        }
+        if self.tool_stick {
+            f(EV_TOOL_STICK);
+        }
+        if self.object_stick {
+            f(EV_OBJ_STICK);
+        }
+        if self.cavitation {
+            f(EV_CAVITATION);
+        }
+    }
+}
+
 /// Peaks and counts gathered along the run.
 #[derive(Clone, Debug)]
 pub(crate) struct Metrics {
@@ -296,6 +343,9 @@ pub struct Model {
     pub(crate) pending_brake: Option<f64>,
     events: [u8; MAX_EVENTS],
     n_events: usize,
+    /// The kinds of `events`, as flags: the event functions are evaluated by visiting them in
+    /// `events`' order with each kind a constant (`EventSet::visit`).
+    event_set: EventSet,
     pub(crate) metrics: Metrics,
     pub(crate) log: Vec<EventLogEntry>,
     /// Recorded trajectory points (when asked).
@@ -435,33 +485,19 @@ impl Model {
             obj_released: false,
             stop_released: false,
         };
+        let event_set = EventSet {
+            tool: p.module != Module::Rigid,
+            object: p.has_object,
+            tool_stick: p.module != Module::Rigid && p.d > 0.0,
+            object_stick: p.has_object && p.mu_n > 0.0,
+            cavitation: p.p_cav.is_some(),
+        };
         let mut events = [0u8; MAX_EVENTS];
         let mut n_events = 0;
-        let mut add = |e: u8| {
+        event_set.visit(|e| {
             events[n_events] = e;
             n_events += 1;
-        };
-        if p.module != Module::Rigid {
-            add(EV_SENSOR);
-        }
-        if p.has_object {
-            add(EV_OBJECT);
-            add(EV_OBJ_RELEASE);
-        }
-        if p.module != Module::Rigid {
-            add(EV_FWD);
-            add(EV_BACK);
-            add(EV_STOP_RELEASE);
-            if p.d > 0.0 {
-                add(EV_TOOL_STICK);
-            }
-        }
-        if p.has_object && p.mu_n > 0.0 {
-            add(EV_OBJ_STICK);
-        }
-        if p.p_cav.is_some() {
-            add(EV_CAVITATION);
-        }
+        });
         let atol = scene.solver.atol;
         let gas_area = if layout.liquid.is_some() { 1.0 } else { p.a_p };
         let mut m = Model {
@@ -474,6 +510,7 @@ impl Model {
             pending_brake: None,
             events,
             n_events,
+            event_set,
             metrics: Metrics {
                 t_detect: None,
                 peak_fr: 0.0,
@@ -773,6 +810,7 @@ impl Model {
     /// it strays `|a_r| h^2 / 8`) or speed (linear: 0). The stuck object's function is a
     /// constant while nothing touches it. The stuck friction functions under load and the
     /// cavitation function are not affine: `None`.
+    #[inline(always)]
     fn event_straying(&self, kind: u8, h: f64, dev: &[f64]) -> Option<f64> {
         let r = &self.regime;
         let robot_x = self.robot.current().a.abs() * h * h * 0.125;
@@ -1323,9 +1361,13 @@ impl<const N: usize> OdeSystem<N> for Model {
     fn events(&self, t: f64, y: &State<N>, g: &mut [f64]) {
         let y = y.as_slice();
         let k = EventKinematics::at(self, t, y);
-        for (gi, &kind) in g.iter_mut().zip(&self.events[..self.n_events]) {
-            *gi = self.event_value(kind, t, y, &k);
-        }
+        let mut i = 0;
+        self.event_set.visit(|kind| {
+            if let Some(gi) = g.get_mut(i) {
+                *gi = self.event_value(kind, t, y, &k);
+            }
+            i += 1;
+        });
     }
 
     fn event(&self, i: usize, t: f64, y: &State<N>) -> f64 {
@@ -1337,6 +1379,17 @@ impl<const N: usize> OdeSystem<N> for Model {
     fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
         let kind = *self.events.get(i)?;
         self.event_straying(kind, t1 - t0, dev.as_slice())
+    }
+
+    fn event_chord_bounds(&self, t0: f64, t1: f64, dev: &State<N>, bounds: &mut [f64]) {
+        let dev = dev.as_slice();
+        let mut i = 0;
+        self.event_set.visit(|kind| {
+            if let Some(b) = bounds.get_mut(i) {
+                *b = self.event_straying(kind, t1 - t0, dev).unwrap_or(f64::NAN);
+            }
+            i += 1;
+        });
     }
 
     fn event_direction(&self, i: usize) -> Direction {

@@ -142,6 +142,16 @@ pub trait OdeSystem<const N: usize> {
         None
     }
 
+    /// [`OdeSystem::event_chord_bound`] of every event function at once, into
+    /// `bounds[..event_count()]`, NaN where there is none. The integrator asks this way, once
+    /// per step; override it where computing the bounds together is cheaper than one by one.
+    fn event_chord_bounds(&self, t0: f64, t1: f64, deviation: &State<N>, bounds: &mut [f64]) {
+        for (i, b) in bounds.iter_mut().enumerate() {
+            *b = self
+                .event_chord_bound(i, t0, t1, deviation)
+                .unwrap_or(f64::NAN);
+        }
+    }
     /// Called at a located crossing of `g_i`, at time `t` (on the far side of the crossing).
     /// It may change `y` and the regime; it must say so by returning `Restart`.
     fn on_event(
