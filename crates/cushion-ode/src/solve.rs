@@ -463,8 +463,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
     /// Whether the step provably holds no crossing of any event function: each has one strict
     /// sign at both ends (`self.g` at `t0`, `g1` at `t1`) and the system's bound of its
-    /// straying from the chord ([`OdeSystem::event_chord_bound`]) is below its smaller end
-    /// value, so it cannot reach zero inside.
+    /// straying from the chord ([`OdeSystem::event_chord_bounds`], all functions at once) is
+    /// below its smaller end value, so it cannot reach zero inside.
     fn holds_no_crossing(&self, dense: &DenseOutput<N>, t0: f64, t1: f64, g1: &[f64]) -> bool {
         let deviation = dense.chord_deviation();
         let mut bounds = [f64::NAN; MAX_EVENTS];
