@@ -10,8 +10,8 @@ pub struct MergeArgs {
     /// The shards' output folders (all N of them, any order).
     #[arg(required = true)]
     pub dirs: Vec<PathBuf>,
-    /// Output folder [default: runs/<sweep name>].
-    #[arg(long)]
+    /// Output folder (default: `runs/<sweep name>`).
+    #[arg(long, help = "Output folder [default: runs/<sweep name>]")]
     pub out: Option<PathBuf>,
     /// No closing line.
     #[arg(long, short)]

@@ -9,8 +9,8 @@ use cushion_sweep::{run_sweep, SweepOptions};
 pub struct SweepArgs {
     /// The sweep file (TOML; see sweeps/*.toml).
     pub file: PathBuf,
-    /// Output folder [default: runs/<sweep name>].
-    #[arg(long)]
+    /// Output folder (default: `runs/<sweep name>`).
+    #[arg(long, help = "Output folder [default: runs/<sweep name>]")]
     pub out: Option<PathBuf>,
     /// Worker threads [default: all cores]. The results do not depend on it.
     #[arg(long)]
