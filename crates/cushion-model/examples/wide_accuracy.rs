@@ -8,7 +8,7 @@
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
 mod support;
-use support::wide::{draw, impact_counts, Corners};
+use support::wide::{count_and_seed, draw, impact_counts, Corners};
 
 fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
     let mut s = s.clone();
@@ -19,11 +19,7 @@ fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
-    let seed: u64 = args
-        .next()
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(0x5DEECE66D);
+    let (n, seed) = count_and_seed(&mut args);
     let mut u = support::Uniform::new(seed);
     let names = [
         "object_final_velocity",

@@ -11,7 +11,7 @@
 use cushion_model::{simulate, RunOptions, RunStatus};
 
 mod support;
-use support::wide::{draw, impact_counts};
+use support::wide::{count_and_seed, draw, impact_counts};
 
 /// `|a - b| / scale`, 0 when both are the same (also both NaN or both None).
 fn off(a: Option<f64>, b: Option<f64>, scale: f64) -> f64 {
@@ -33,11 +33,7 @@ fn main() {
         support::wide::Corners::NONE
     };
     let mut args = all.into_iter().filter(|a| a != "--corners");
-    let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
-    let seed: u64 = args
-        .next()
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(0x5DEECE66D);
+    let (n, seed) = count_and_seed(&mut args);
     // `wide_scenes N SEED K`: write scene K as TOML to standard output instead
     let show: Option<usize> = args.next().and_then(|a| a.parse().ok());
     let mut u = support::Uniform::new(seed);

@@ -5,6 +5,17 @@ use super::Uniform;
 use cushion_model::config::RobotStart;
 use cushion_model::{Module, Scene, Summary};
 
+/// The leading `N SEED` arguments of the wide-scene examples (defaults 1000 and one fixed seed),
+/// so that `wide_scenes` and `wide_accuracy` draw the same scenes from the same arguments.
+pub fn count_and_seed(args: &mut impl Iterator<Item = String>) -> (usize, u64) {
+    let n = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
+    let seed = args
+        .next()
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(0x5DEECE66D);
+    (n, seed)
+}
+
 /// A run's impact counts: tool-object, forward stop, back stop.
 pub fn impact_counts(s: &Summary) -> (u32, u32, u32) {
     (
