@@ -1,7 +1,7 @@
 //! The model's bounds of how far its event functions stray from their chords within a step
-//! (`OdeSystem::event_chord_bound`, which lets the integrator skip the interior samples of
-//! quiet steps) hold along whole runs: sampled at 64 points of every step's dense output, no
-//! function strays further than its bound. At the same points, each function evaluated alone
+//! (`OdeSystem::event_chord_bound`, and `event_chord_bounds`, all at once, as the integrator
+//! asks; they let it skip the interior samples of quiet steps) hold along whole runs: sampled
+//! at 64 points of every step's dense output, no function strays further than its bound. At the same points, each function evaluated alone
 //! (`OdeSystem::event`, what the root finder calls) equals its value among all of them.
 
 use cushion_model::model::Model;
@@ -29,6 +29,9 @@ impl<const N: usize> OdeSystem<N> for Watch<'_> {
     }
     fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
         self.m.event_chord_bound(i, t0, t1, dev)
+    }
+    fn event_chord_bounds(&self, t0: f64, t1: f64, dev: &State<N>, bounds: &mut [f64]) {
+        self.m.event_chord_bounds(t0, t1, dev, bounds)
     }
     fn event_direction(&self, i: usize) -> Direction {
         OdeSystem::<N>::event_direction(self.m, i)
@@ -59,6 +62,17 @@ impl Watch<'_> {
         let bounds: Vec<Option<f64>> = (0..n)
             .map(|i| self.m.event_chord_bound(i, step.t0, step.t1, &dev))
             .collect();
+        // the integrator asks for all bounds at once: the same bounds, to the bit (NaN: none)
+        let mut all = [0.0; 16];
+        self.m
+            .event_chord_bounds(step.t0, step.t1, &dev, &mut all[..n]);
+        for i in 0..n {
+            assert_eq!(
+                bounds[i].unwrap_or(f64::NAN).to_bits(),
+                all[i].to_bits(),
+                "event {i}: bound alone differs from the bound among all"
+            );
+        }
         for k in 1..64 {
             let theta = k as f64 / 64.0;
             let t = step.t0 + theta * (step.t1 - step.t0);
