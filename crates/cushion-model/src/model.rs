@@ -992,11 +992,12 @@ impl Model {
     /// tool has settled (robot standing: stuck, or relative speed and acceleration at the
     /// tolerance's level; robot cruising: stuck short of the sensor, or at rest on its stop,
     /// `resting.rs`); and the object is out of contact and either free and not slower than the
-    /// tool or, with the robot standing, stuck on the plane. Then the run may end early
+    /// tool (nor, while the robot cruises, than the robot, which the resting tool rides with) or,
+    /// with the robot standing, stuck on the plane. Then the run may end early
     /// with its final values extrapolated exactly. Failing that, the run may still end if only
     /// the tool's small ringing on its stop is left, written in closed form
     /// (`ringing_tail.rs`).
-    fn can_end_early(&mut self, t: f64, y: &[f64]) -> bool {
+    pub(crate) fn can_end_early(&mut self, t: f64, y: &[f64]) -> bool {
         let stopped = self.robot.stopped();
         if !(self.early_end_enabled
             && t < self.t_end
@@ -1007,10 +1008,14 @@ impl Model {
         }
         let seg = *self.robot.current();
         // a cruising robot's run goes on while it may reach the object again (before the
-        // impact, always): found from the state, without the physics
+        // impact, always): found from the state, without the physics. The tool that may end
+        // here rides on with the robot, so the object must outrun the robot as well as the
+        // tool's speed of the moment, which a tool at rest on its stop may have a little below
+        // the robot's (by up to its rest tolerance)
         if !stopped {
-            let v_t = self.layout.tool.map_or(seg.at(t).1, |i| y[i + 1]);
-            if !self.object_outruns(y, v_t) {
+            let v_r = seg.at(t).1;
+            let v_t = self.layout.tool.map_or(v_r, |i| y[i + 1]);
+            if !self.object_outruns(y, v_t.max(v_r)) {
                 return self.try_ringing_tail(t, y);
             }
         }
