@@ -32,7 +32,7 @@
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::gas_law::GasLaw;
-use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC};
+use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC, TIE};
 use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step, MAX_EVENTS};
@@ -1076,10 +1076,11 @@ impl Model {
         );
         let at = |c: &PeakStep, t: f64| self.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime);
         let m = &self.metrics;
-        // the signed force at the refined peak, from the step that holds it
+        // the signed force at the refined peak, from the step that holds it (an earlier peak of
+        // the same height may lie below the largest sample by rounding: `TIE`)
         let peak_fr = fr
             .locate(|c, t| at(c, t).f_r.abs(), m.peak_fr.abs())
-            .filter(|&(_, v, _)| v > m.peak_fr.abs())
+            .filter(|&(_, v, _)| v > m.peak_fr.abs() * (1.0 - TIE))
             .map(|(t, _, c)| (t, at(c, t).f_r));
         let peak_fc = fc.locate(|c, t| at(c, t).f_c, m.peak_fc).map(|p| p.1);
         let max_stroke = s.locate(|c, t| at(c, t).s, m.max_stroke).map(|p| p.1);

@@ -64,6 +64,12 @@ impl PeakStep {
 /// and by which the step ends must fall below it for a later rise to be another peak.
 pub(crate) const RIVAL: f64 = 1e-2;
 
+/// Two refined peaks within this relative distance are the same height (to rounding: the
+/// search finds a smooth peak to ~1e-14), and the earlier one is the peak. A bistable spring's
+/// two extreme forces are equal and opposite, so a tool that crosses both slowly meets the
+/// same largest `|F_r|` twice; without a rule, rounding chose the sign and the time.
+pub(crate) const TIE: f64 = 1e-12;
+
 /// Where one quantity's peak is: the step with its largest sample and, when that sample is the
 /// step's end, the step after it; and the step with the largest sample of a rival peak.
 #[derive(Clone, Debug, Default)]
@@ -159,8 +165,9 @@ impl PeakCandidate {
 
     /// The largest value of `f(step, t)` near the largest sample, whose value is `f_best`:
     /// within the two sample intervals around it, and in the first sample interval of the next
-    /// step when the sample is a step's end. Returns `(t, value, the step that holds it)`;
-    /// `None` without a candidate.
+    /// step when the sample is a step's end; of the best and the rival peak the larger, or the
+    /// earlier if they are the same height ([`TIE`]). Returns `(t, value, the step that holds
+    /// it)`; `None` without a candidate.
     pub fn locate(
         &self,
         f: impl Fn(&PeakStep, f64) -> f64,
@@ -170,7 +177,8 @@ impl PeakCandidate {
         let mut best = locate_in(c, self.after.as_ref(), &f, f_best);
         if let Some((r, after, value)) = &self.rival {
             let other = locate_in(r, after.as_ref(), &f, *value);
-            if other.1 > best.1 {
+            let tie = (other.1 - best.1).abs() <= TIE * other.1.abs().max(best.1.abs());
+            if (tie && other.0 < best.0) || (!tie && other.1 > best.1) {
                 best = other;
             }
         }
@@ -328,5 +336,63 @@ mod tests {
         for t in [0.1, 0.13, 0.2, 0.29] {
             assert!((step.state_at(t)[0] - q(t)).abs() < 1e-14);
         }
+    }
+
+    /// A step of `f` over `[t0, t0 + h]`: its five nodes, its largest sample marked.
+    fn step_of(f: &impl Fn(f64) -> f64, t0: f64, h: f64) -> (PeakStep, f64, f64) {
+        let ts: [f64; K + 1] = std::array::from_fn(|k| t0 + h * k as f64 / K as f64);
+        let mut nodes = [[0.0; MAX_DYNAMIC]; K + 1];
+        let mut k_best = 0;
+        for k in 0..=K {
+            nodes[k][0] = f(ts[k]);
+            if nodes[k][0] > nodes[k_best][0] {
+                k_best = k;
+            }
+        }
+        let step = PeakStep {
+            ts,
+            nodes,
+            seg: Segment {
+                t0: 0.0,
+                x0: 0.0,
+                v0: 0.0,
+                a: 0.0,
+                phase: crate::physics::Phase::Stopped,
+            },
+            regime: Regime::default(),
+            k: k_best,
+        };
+        (step, nodes[k_best][0], nodes[K][0])
+    }
+
+    /// Observe `f` step by step over `[0, 1]` and locate its peak: `(t, value)`.
+    fn peak_of(f: impl Fn(f64) -> f64) -> (f64, f64) {
+        let mut c = PeakCandidate::starting_at(f(0.0));
+        let h = 0.01;
+        for i in 0..100 {
+            let (step, best, end) = step_of(&f, i as f64 * h, h);
+            c.observe(best, end, || step);
+            if c.wants_next() {
+                c.follow(step_of(&f, (i + 1) as f64 * h, h).0);
+            }
+        }
+        let (t, v, _) = c.locate(|c, t| c.state_at(t)[0], c.best).unwrap();
+        (t, v)
+    }
+
+    #[test]
+    fn of_two_peaks_of_the_same_height_the_earlier_is_the_peak() {
+        // two quadratic peaks (exact in the quartic nodes) at 0.2033 and 0.7071, of height 1
+        // and 1 + 2e-13: the same height to the search's rounding (~1e-15) and within `TIE`,
+        // though the later one is the larger and is found so (without the rule it would win)
+        let bump = |t: f64, tp: f64| 1.0 - 40.0 * (t - tp) * (t - tp);
+        let f = |t: f64| bump(t, 0.2033).max(bump(t, 0.7071) + 2e-13).max(0.0);
+        let (t, v) = peak_of(f);
+        assert!((t - 0.2033).abs() < 1e-6, "{t}");
+        assert!((v - 1.0).abs() < 1e-14, "{v}");
+        // a later peak higher by more than the tie's width is the peak
+        let g = |t: f64| bump(t, 0.2033).max(bump(t, 0.7071) + 1e-9).max(0.0);
+        let (t, _) = peak_of(g);
+        assert!((t - 0.7071).abs() < 1e-6, "{t}");
     }
 }
