@@ -49,7 +49,7 @@ pub struct Summary {
     pub t_detect: Option<f64>,
     /// When the robot began to brake (`t_detect + dead_time`); `None` if never.
     pub t_brake: Option<f64>,
-    /// `F_r` at the time of its largest magnitude (signed).
+    /// `F_r` at the time of its largest magnitude (signed; of equal magnitudes, the earliest).
     pub peak_robot_force: f64,
     pub t_peak_robot_force: f64,
     /// Integral of `F_r` over the run.
