@@ -32,7 +32,7 @@
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::gas_law::GasLaw;
-use crate::peaks::{PeakCandidate, PeakStep, K, MAX_DYNAMIC, TIE};
+use crate::peaks::{rival_window, PeakCandidate, PeakStep, K, MAX_DYNAMIC, TIE};
 use crate::physics::{self, Phase, RobotProfile, Segment, GRAVITY};
 use crate::trajectory::{EventLogEntry, TrajectoryPoint};
 use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step, MAX_EVENTS};
@@ -544,7 +544,7 @@ impl Model {
             ringing_cache: Vec::new(),
             fr_peak: PeakCandidate::default(),
             fc_peak: PeakCandidate::default(),
-            s_peak: PeakCandidate::starting_at(s0),
+            s_peak: PeakCandidate::starting_at(s0, rival_window(scene.solver.rtol)),
             last_sample: None,
             force_sample: 0,
             sample_start: false,
@@ -571,8 +571,9 @@ impl Model {
         let e0 = m.eval(0.0, &y0, m.robot.current(), &m.regime);
         m.metrics.peak_fr = e0.f_r;
         m.metrics.peak_fc = e0.f_c;
-        m.fr_peak = PeakCandidate::starting_at(e0.f_r.abs());
-        m.fc_peak = PeakCandidate::starting_at(e0.f_c);
+        let window = rival_window(m.rtol);
+        m.fr_peak = PeakCandidate::starting_at(e0.f_r.abs(), window);
+        m.fc_peak = PeakCandidate::starting_at(e0.f_c, window);
         m.metrics.max_p1 = e0.p1;
         m.y0 = y0;
         m

@@ -12,9 +12,10 @@
 //!
 //! Two peaks of nearly the same height in different places (a bistable module's back-stop
 //! impact and a later one, 0.04 % apart) may be sampled in the wrong order: the one with the
-//! larger sample need not hold the larger peak. The largest sample of another peak within
-//! [`RIVAL`] of the best is kept as a rival and refined too (a peak is another one when the
-//! step ends have fallen more than `RIVAL` below the best since it).
+//! larger sample need not hold the larger peak, least of all where the steps are long. The
+//! steps with the largest samples of up to three other peaks within [`rival_window`] of the
+//! best are kept as rivals and refined too (a peak is another one when the step ends have
+//! fallen more than [`RIVAL`] below the previous one's largest sample since it).
 
 use crate::model::{Regime, MAX_STATES};
 use crate::physics::Segment;
@@ -60,9 +61,22 @@ impl PeakStep {
     }
 }
 
-/// Relative distance from the largest sample within which another peak is refined as well,
-/// and by which the step ends must fall below it for a later rise to be another peak.
+/// By how much (relative) the step ends must fall below a peak's largest sample for a later
+/// rise to be another peak.
 pub(crate) const RIVAL: f64 = 1e-2;
+
+/// Relative distance below the largest sample within which another peak is kept and refined as
+/// well, at the tolerance `rtol`: `RIVAL (rtol / 1e-6)^0.4` within `[RIVAL, 0.2]`. A sample
+/// lies below its peak by about the square of the step (a 5th-order method's step grows like
+/// `rtol^(1/5)`), and at loose tolerances by more than `RIVAL` (rtol 1e-3: a forward stop's
+/// impact sampled 1.6 % below a later one's sample held the larger peak, 1.3 % above it). At
+/// rtol 1e-6 and tighter the window is `RIVAL`, which keeps the extra refinements rare.
+pub(crate) fn rival_window(rtol: f64) -> f64 {
+    (RIVAL * (rtol / 1e-6).powf(0.4)).clamp(RIVAL, 0.2)
+}
+
+/// Other peaks kept besides the best (the largest samples among those in the window).
+const RIVALS: usize = 3;
 
 /// Two refined peaks within this relative distance are the same height (to rounding: the
 /// search finds a smooth peak to ~1e-14), and the earlier one is the peak. A bistable spring's
@@ -70,8 +84,12 @@ pub(crate) const RIVAL: f64 = 1e-2;
 /// same largest `|F_r|` twice; without a rule, rounding chose the sign and the time.
 pub(crate) const TIE: f64 = 1e-12;
 
+/// Another peak's step (and the one after it, if kept) with its largest sample.
+type Rival = (PeakStep, Option<PeakStep>, f64);
+
 /// Where one quantity's peak is: the step with its largest sample and, when that sample is the
-/// step's end, the step after it; and the step with the largest sample of a rival peak.
+/// step's end, the step after it; and the steps with the largest samples of up to [`RIVALS`]
+/// other peaks within [`rival_window`] of it.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct PeakCandidate {
     pub at: Option<PeakStep>,
@@ -79,37 +97,71 @@ pub(crate) struct PeakCandidate {
     wants_next: bool,
     /// The largest sample (the one `at` holds), or the value at the start.
     best: f64,
+    /// [`rival_window`] at the run's tolerance.
+    window: f64,
     /// A step has ended more than `RIVAL` below `best` since `at`.
     dipped: bool,
-    /// Another peak's step (and the one after it, if kept) with its largest sample.
-    rival: Option<(PeakStep, Option<PeakStep>, f64)>,
+    /// At most [`RIVALS`]; on the heap, allocated only when a rival comes up, so that the
+    /// model, moved whole a few times per run, stays small.
+    rivals: Vec<Option<Rival>>,
+    /// The slot of the rival whose peak is still rising or at its top (no step has ended more
+    /// than `RIVAL` below it since): a larger sample of that peak replaces it there.
+    rising: Option<usize>,
 }
 
 impl PeakCandidate {
-    /// No step kept yet; `best` is the value at the start, which a peak must exceed.
-    pub fn starting_at(best: f64) -> PeakCandidate {
+    /// No step kept yet; `best` is the value at the start, which a peak must exceed; rivals
+    /// within `window` (relative, [`rival_window`]) are kept.
+    pub fn starting_at(best: f64, window: f64) -> PeakCandidate {
         PeakCandidate {
             best,
+            window,
             ..PeakCandidate::default()
         }
     }
 
+    /// Keep `rival` in slot `slot` if given, else in a free slot or in place of the smallest
+    /// rival if it is larger. Returns the slot it went to.
+    fn keep(&mut self, rival: Rival, slot: Option<usize>) -> Option<usize> {
+        let slot = slot.or_else(|| {
+            let free = self.rivals.iter().position(Option::is_none);
+            if free.is_none() && self.rivals.len() < RIVALS {
+                self.rivals.push(None);
+                return Some(self.rivals.len() - 1);
+            }
+            free.or_else(|| {
+                let (i, smallest) = self
+                    .rivals
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, r)| r.as_ref().map(|r| (i, r.2)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1))?;
+                (smallest < rival.2).then_some(i)
+            })
+        })?;
+        self.rivals[slot] = Some(rival);
+        Some(slot)
+    }
+
     /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
-    /// previous one becomes the rival if it was another peak, near enough.
+    /// previous one becomes a rival if it was another peak, near enough.
+    #[inline]
     fn set(&mut self, step: PeakStep, value: f64) {
-        if self.dipped && self.best >= value - RIVAL * value.abs() {
+        if let Some(i) = self.rising.take() {
+            // the rising rival's peak is this one: `at` takes it over
+            self.rivals[i] = None;
+        }
+        let window = value - self.window * value.abs();
+        if self.dipped && self.best >= window {
             if let Some(old) = self.at.take() {
-                if self.rival.as_ref().is_none_or(|r| r.2 < self.best) {
-                    self.rival = Some((old, self.after.take(), self.best));
-                }
+                let after = self.after.take();
+                self.keep((old, after, self.best), None);
             }
         }
-        if self
-            .rival
-            .as_ref()
-            .is_some_and(|r| r.2 < value - RIVAL * value.abs())
-        {
-            self.rival = None;
+        for r in self.rivals.iter_mut() {
+            if r.as_ref().is_some_and(|r| r.2 < window) {
+                *r = None;
+            }
         }
         self.wants_next = step.k == K;
         self.at = Some(step);
@@ -118,15 +170,28 @@ impl PeakCandidate {
         self.dipped = false;
     }
 
-    /// A step whose largest sample `value` is not a new largest one: kept as the rival if it
+    /// A step whose largest sample `value` is not a new largest one: kept as a rival if it
     /// belongs to another peak and comes near the best (`step` builds it).
     fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
-        if self.at.is_some()
-            && self.dipped
-            && value >= self.best - RIVAL * self.best.abs()
-            && self.rival.as_ref().is_none_or(|r| r.2 < value)
+        if !(self.at.is_some() && self.dipped && value >= self.best - self.window * self.best.abs())
         {
-            self.rival = Some((step(), None, value));
+            return;
+        }
+        match self.rising {
+            // the same peak as the rival still rising: keep its larger sample
+            Some(i) => {
+                if self.rivals[i].as_ref().is_none_or(|r| r.2 < value) {
+                    self.rivals[i] = Some((step(), None, value));
+                }
+            }
+            None => {
+                let smallest_kept = self.rivals.len() == RIVALS
+                    && self.rivals.iter().all(Option::is_some)
+                    && self.rivals.iter().flatten().all(|r| r.2 >= value);
+                if !smallest_kept {
+                    self.rising = self.keep((step(), None, value), None);
+                }
+            }
         }
     }
 
@@ -148,6 +213,12 @@ impl PeakCandidate {
         if value < self.best - RIVAL * self.best.abs() {
             self.dipped = true;
         }
+        if let Some(i) = self.rising {
+            let top = self.rivals[i].as_ref().map_or(f64::INFINITY, |r| r.2);
+            if value < top - RIVAL * top.abs() {
+                self.rising = None;
+            }
+        }
     }
 
     /// Whether the step that follows should be kept (see [`Self::follow`]).
@@ -165,8 +236,8 @@ impl PeakCandidate {
 
     /// The largest value of `f(step, t)` near the largest sample, whose value is `f_best`:
     /// within the two sample intervals around it, and in the first sample interval of the next
-    /// step when the sample is a step's end; of the best and the rival peak the larger, or the
-    /// earlier if they are the same height ([`TIE`]). Returns `(t, value, the step that holds
+    /// step when the sample is a step's end; of the best and the rival peaks the largest, or the
+    /// earliest of those the same height ([`TIE`]). Returns `(t, value, the step that holds
     /// it)`; `None` without a candidate.
     pub fn locate(
         &self,
@@ -175,7 +246,7 @@ impl PeakCandidate {
     ) -> Option<(f64, f64, &PeakStep)> {
         let c = self.at.as_ref()?;
         let mut best = locate_in(c, self.after.as_ref(), &f, f_best);
-        if let Some((r, after, value)) = &self.rival {
+        for (r, after, value) in self.rivals.iter().flatten() {
             let other = locate_in(r, after.as_ref(), &f, *value);
             let tie = (other.1 - best.1).abs() <= TIE * other.1.abs().max(best.1.abs());
             if (tie && other.0 < best.0) || (!tie && other.1 > best.1) {
@@ -367,7 +438,7 @@ mod tests {
 
     /// Observe `f` step by step over `[0, 1]` and locate its peak: `(t, value)`.
     fn peak_of(f: impl Fn(f64) -> f64) -> (f64, f64) {
-        let mut c = PeakCandidate::starting_at(f(0.0));
+        let mut c = PeakCandidate::starting_at(f(0.0), RIVAL);
         let h = 0.01;
         for i in 0..100 {
             let (step, best, end) = step_of(&f, i as f64 * h, h);
@@ -394,5 +465,23 @@ mod tests {
         let g = |t: f64| bump(t, 0.2033).max(bump(t, 0.6913) + 1e-9).max(0.0);
         let (t, _) = peak_of(g);
         assert!((t - 0.6913).abs() < 1e-6, "{t}");
+    }
+
+    #[test]
+    fn a_peak_sampled_low_among_several_near_ones_is_still_found() {
+        // Three sharp peaks: at 0.20125 (height 1.003, its nearest node 1.25e-3 away, so its
+        // largest sample is 0.99675), at 0.4 (1.0, on a node) and at 0.601 (1.001, sample
+        // 0.997). The middle one holds the largest sample; the first holds the peak, with the
+        // smallest sample of the three: one rival slot would have kept the last one only.
+        let bump = |t: f64, tp: f64, top: f64| top - 4000.0 * (t - tp) * (t - tp);
+        let f = |t: f64| {
+            bump(t, 0.20125, 1.003)
+                .max(bump(t, 0.4, 1.0))
+                .max(bump(t, 0.601, 1.001))
+                .max(0.0)
+        };
+        let (t, v) = peak_of(f);
+        assert!((t - 0.20125).abs() < 1e-6, "{t}");
+        assert!((v - 1.003).abs() < 1e-12, "{v}");
     }
 }
