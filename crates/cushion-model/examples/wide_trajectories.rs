@@ -8,10 +8,10 @@
 //! 1 mN; the stroke: the stroke length; the gas pressure: its peak). The peaks are searched on
 //! the same dense output, so a sample above one is a peak the search missed. Prints the runs
 //! that fail and the largest excess of each kind, in rtol.
-use cushion_model::{simulate, RunOptions, RunStatus, TrajectoryPoint};
+use cushion_model::{RunStatus, TrajectoryPoint};
 
 mod support;
-use support::wide::{count_and_seed, draw, Corners};
+use support::wide::{count_and_seed, draw, run_recorded, Corners};
 
 fn main() {
     let mut all: Vec<String> = std::env::args().skip(1).collect();
@@ -43,13 +43,7 @@ fn main() {
         if s.validate().is_err() || !s.solver.method.is_adaptive() {
             continue;
         }
-        let r = simulate(
-            &s,
-            &RunOptions {
-                trajectory: true,
-                sample_interval: Some(s.t_end / 2000.0),
-            },
-        );
+        let r = run_recorded(&s);
         let m = &r.summary;
         if m.status != RunStatus::Ok {
             continue;

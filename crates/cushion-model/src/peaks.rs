@@ -386,24 +386,7 @@ mod tests {
     #[test]
     fn lagrange_nodes_reproduce_a_quartic() {
         let q = |t: f64| 1.0 + t - 2.0 * t * t + 0.5 * t.powi(3) - 0.25 * t.powi(4);
-        let ts: [f64; K + 1] = std::array::from_fn(|k| 0.1 + 0.05 * k as f64);
-        let mut nodes = [[0.0; MAX_DYNAMIC]; K + 1];
-        for k in 0..=K {
-            nodes[k][0] = q(ts[k]);
-        }
-        let step = PeakStep {
-            ts,
-            nodes,
-            seg: Segment {
-                t0: 0.0,
-                x0: 0.0,
-                v0: 0.0,
-                a: 0.0,
-                phase: crate::physics::Phase::Stopped,
-            },
-            regime: Regime::default(),
-            k: 2,
-        };
+        let (step, _, _) = step_of(&q, 0.1, 0.2);
         for t in [0.1, 0.13, 0.2, 0.29] {
             assert!((step.state_at(t)[0] - q(t)).abs() < 1e-14);
         }

@@ -12,7 +12,7 @@
 mod support;
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary, TrajectoryPoint};
-use support::wide::{draw, impact_counts, Corners};
+use support::wide::{draw, impact_counts, run_recorded, Corners};
 use support::Uniform;
 
 fn finite(s: &Summary) -> bool {
@@ -118,13 +118,7 @@ fn wide_trajectories_agree_with_their_summaries() {
     let mut compared = 0;
     for i in 0..300 {
         let s = draw(&mut u, Corners::NONE);
-        let r = simulate(
-            &s,
-            &RunOptions {
-                trajectory: true,
-                sample_interval: Some(s.t_end / 2000.0),
-            },
-        );
+        let r = run_recorded(&s);
         let m = &r.summary;
         let what = format!("scene {i}:\n{}", toml::to_string(&s.to_toml()).unwrap());
         assert_eq!(m.status, RunStatus::Ok, "{what}{}", m.message);

@@ -3,7 +3,7 @@
 
 use super::Uniform;
 use cushion_model::config::RobotStart;
-use cushion_model::{Module, Scene, Summary};
+use cushion_model::{simulate, Module, RunOptions, RunResult, Scene, Summary};
 
 /// The leading `N SEED` arguments of the wide-scene examples (defaults 1000 and one fixed seed),
 /// so that `wide_scenes` and `wide_accuracy` draw the same scenes from the same arguments.
@@ -14,6 +14,18 @@ pub fn count_and_seed(args: &mut impl Iterator<Item = String>) -> (usize, u64) {
         .and_then(|a| a.parse().ok())
         .unwrap_or(0x5DEECE66D);
     (n, seed)
+}
+
+/// A run with its trajectory recorded as a user plots it: every step, every event, and samples
+/// every `t_end / 2000`.
+pub fn run_recorded(s: &Scene) -> RunResult {
+    simulate(
+        s,
+        &RunOptions {
+            trajectory: true,
+            sample_interval: Some(s.t_end / 2000.0),
+        },
+    )
 }
 
 /// A run's impact counts: tool-object, forward stop, back stop.
