@@ -4,14 +4,15 @@
 //! adaptive method, the trajectory (every step, every event, samples every `t_end / 2000`) must
 //! end at `t_end`, run forward in time, carry the summary's final object speed at its last
 //! point, and stay within the summary's peaks: no sample of `|F_r|`, `F_c`, the stroke or the
-//! gas pressure above the refined peak by more than rtol of its scale (forces: the peak or
-//! 1 mN; the stroke: the stroke length; the gas pressure: its peak). The peaks are searched on
-//! the same dense output, so a sample above one is a peak the search missed. Prints the runs
-//! that fail and the largest excess of each kind, in rtol.
-use cushion_model::{RunStatus, TrajectoryPoint};
+//! gas pressure above the refined peak by more than rtol of its scale
+//! (`support::wide::peaks_and_samples`). Prints the runs that fail and the largest excess of
+//! each kind, in rtol.
+use cushion_model::RunStatus;
 
 mod support;
-use support::wide::{count_and_seed, draw, run_recorded, Corners};
+use support::wide::{
+    count_and_seed, draw, peaks_and_samples, run_recorded, trajectory_mismatches, Corners,
+};
 
 fn main() {
     let mut all: Vec<String> = std::env::args().skip(1).collect();
@@ -31,7 +32,6 @@ fn main() {
     let mut args = all.into_iter().filter(|a| a != "--corners");
     let (n, seed) = count_and_seed(&mut args);
     let mut u = support::Uniform::new(seed);
-    let names = ["|F_r|", "F_c", "stroke", "gas pressure"];
     let mut worst = [(0.0f64, 0usize); 4];
     let (mut checked, mut failed) = (0, Vec::new());
     for i in 0..n {
@@ -49,47 +49,8 @@ fn main() {
             continue;
         }
         checked += 1;
-        let pts = &r.trajectory.as_ref().expect("recorded").points;
-        let last = pts.last().expect("a point");
-        let mut problems = Vec::new();
-        if last.t != s.t_end {
-            problems.push(format!("ends at {} not t_end {}", last.t, s.t_end));
-        }
-        if pts.windows(2).any(|w| w[1].t < w[0].t) {
-            problems.push("time runs backwards".to_string());
-        }
-        if let Some(v) = m.object_final_velocity {
-            if last.v_p != v {
-                problems.push(format!("last v_p {} vs summary {v}", last.v_p));
-            }
-        }
-        // (value at the peak, the sampled quantity, its scale: forces to their peak or 1 mN,
-        // the stroke to the stroke length, the gas pressure to its peak)
-        type Of = fn(&TrajectoryPoint) -> f64;
-        let peaks: [(f64, Of, f64); 4] = [
-            (
-                m.peak_robot_force.abs(),
-                |p| p.f_r.abs(),
-                m.peak_robot_force.abs().max(1e-3),
-            ),
-            (
-                m.peak_contact_force,
-                |p| p.f_c,
-                m.peak_contact_force.max(1e-3),
-            ),
-            (m.max_stroke, |p| p.s, s.stops.stroke),
-            (
-                m.max_gas_pressure.unwrap_or(f64::INFINITY),
-                |p| p.p1,
-                m.max_gas_pressure.unwrap_or(1.0),
-            ),
-        ];
-        for (k, (peak, f, scale)) in peaks.iter().enumerate() {
-            let top = pts
-                .iter()
-                .map(f)
-                .filter(|v| v.is_finite())
-                .fold(f64::NEG_INFINITY, f64::max);
+        let mut problems = trajectory_mismatches(&s, &r);
+        for (k, (name, peak, top, scale)) in peaks_and_samples(&s, &r).into_iter().enumerate() {
             // relative to the scale, in units of rtol
             let excess = (top - peak) / scale / s.solver.rtol;
             if excess > worst[k].0 {
@@ -97,8 +58,7 @@ fn main() {
             }
             if excess > 1.0 {
                 problems.push(format!(
-                    "{} sample {top} above the peak {peak} ({excess:.1} rtol)",
-                    names[k]
+                    "{name} sample {top} above the peak {peak} ({excess:.1} rtol)"
                 ));
             }
         }
@@ -113,11 +73,9 @@ fn main() {
         }
     }
     println!("{checked} runs checked, {} with problems", failed.len());
-    for (k, name) in names.iter().enumerate() {
-        println!(
-            "largest sample above the peak, {name:<13} {:.2e} rtol (scene {})",
-            worst[k].0, worst[k].1
-        );
+    let names = ["|F_r|", "F_c", "stroke", "gas pressure"];
+    for (name, (excess, scene)) in names.iter().zip(worst) {
+        println!("largest sample above the peak, {name:<13} {excess:.2e} rtol (scene {scene})");
     }
     for f in &failed {
         println!("  {f}");

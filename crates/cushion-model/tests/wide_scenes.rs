@@ -11,8 +11,10 @@
 #[path = "../examples/support/mod.rs"]
 mod support;
 
-use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary, TrajectoryPoint};
-use support::wide::{draw, impact_counts, run_recorded, Corners};
+use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+use support::wide::{
+    draw, impact_counts, peaks_and_samples, run_recorded, trajectory_mismatches, Corners,
+};
 use support::Uniform;
 
 fn finite(s: &Summary) -> bool {
@@ -119,42 +121,24 @@ fn wide_trajectories_agree_with_their_summaries() {
     for i in 0..300 {
         let s = draw(&mut u, Corners::NONE);
         let r = run_recorded(&s);
-        let m = &r.summary;
         let what = format!("scene {i}:\n{}", toml::to_string(&s.to_toml()).unwrap());
-        assert_eq!(m.status, RunStatus::Ok, "{what}{}", m.message);
-        let pts = &r.trajectory.as_ref().unwrap().points;
-        let last = pts.last().unwrap();
-        assert_eq!(last.t, s.t_end, "{what}");
-        assert!(pts.windows(2).all(|w| w[1].t >= w[0].t), "{what}");
-        if let Some(v) = m.object_final_velocity {
-            assert_eq!(last.v_p, v, "{what}");
-        }
-        if m.stats.stiff {
+        assert_eq!(
+            r.summary.status,
+            RunStatus::Ok,
+            "{what}{}",
+            r.summary.message
+        );
+        let mismatches = trajectory_mismatches(&s, &r);
+        assert!(mismatches.is_empty(), "{what}{mismatches:?}");
+        if r.summary.stats.stiff {
             continue;
         }
         compared += 1;
-        type Of = fn(&TrajectoryPoint) -> f64;
-        let peaks: [(&str, f64, Of, f64); 4] = [
-            ("|F_r|", m.peak_robot_force.abs(), |p| p.f_r.abs(), 1e-2),
-            ("F_c", m.peak_contact_force, |p| p.f_c, 1e-2),
-            ("stroke", m.max_stroke, |p| p.s, s.stops.stroke),
-            (
-                "gas pressure",
-                m.max_gas_pressure.unwrap_or(f64::INFINITY),
-                |p| p.p1,
-                m.max_gas_pressure.unwrap_or(1.0),
-            ),
-        ];
-        for (name, peak, f, scale) in peaks {
-            if scale == 1e-2 && peak < scale {
+        for (name, peak, top, scale) in peaks_and_samples(&s, &r) {
+            let force = matches!(name, "|F_r|" | "F_c");
+            if force && peak < 1e-2 {
                 continue;
             }
-            let scale = scale.max(peak.abs());
-            let top = pts
-                .iter()
-                .map(f)
-                .filter(|v| v.is_finite())
-                .fold(f64::NEG_INFINITY, f64::max);
             assert!(
                 top - peak <= s.solver.rtol * scale,
                 "{what}{name}: a sample {top} above the peak {peak}"

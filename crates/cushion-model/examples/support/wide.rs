@@ -3,7 +3,7 @@
 
 use super::Uniform;
 use cushion_model::config::RobotStart;
-use cushion_model::{simulate, Module, RunOptions, RunResult, Scene, Summary};
+use cushion_model::{simulate, Module, RunOptions, RunResult, Scene, Summary, TrajectoryPoint};
 
 /// The leading `N SEED` arguments of the wide-scene examples (defaults 1000 and one fixed seed),
 /// so that `wide_scenes` and `wide_accuracy` draw the same scenes from the same arguments.
@@ -26,6 +26,70 @@ pub fn run_recorded(s: &Scene) -> RunResult {
             sample_interval: Some(s.t_end / 2000.0),
         },
     )
+}
+
+/// How a recorded run's trajectory (`run_recorded`) disagrees in kind with its summary: it does
+/// not end at `t_end`, its time runs backwards, or its last object speed is not the summary's
+/// final one. Empty when it agrees.
+pub fn trajectory_mismatches(s: &Scene, r: &RunResult) -> Vec<String> {
+    let mut found = Vec::new();
+    let pts = &r.trajectory.as_ref().expect("recorded").points;
+    let last = pts.last().expect("a point");
+    if last.t != s.t_end {
+        found.push(format!("ends at {} not t_end {}", last.t, s.t_end));
+    }
+    if pts.windows(2).any(|w| w[1].t < w[0].t) {
+        found.push("time runs backwards".to_string());
+    }
+    if let Some(v) = r.summary.object_final_velocity {
+        if last.v_p != v {
+            found.push(format!("last v_p {} vs summary {v}", last.v_p));
+        }
+    }
+    found
+}
+
+/// Each peak of a recorded run's summary against its trajectory: `(name, reported peak, largest
+/// sample, scale)` for `|F_r|`, `F_c` (scale: the peak or 1 mN), the stroke (the larger of the
+/// stroke length and the largest stroke) and the gas pressure (its peak; without gas the peak
+/// is infinite). The peaks are searched on the same dense output the samples come from, so a
+/// sample above a peak is a peak the search missed.
+pub fn peaks_and_samples(s: &Scene, r: &RunResult) -> [(&'static str, f64, f64, f64); 4] {
+    let m = &r.summary;
+    let pts = &r.trajectory.as_ref().expect("recorded").points;
+    let top = |f: fn(&TrajectoryPoint) -> f64| {
+        pts.iter()
+            .map(f)
+            .filter(|v| v.is_finite())
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let gas = m.max_gas_pressure.unwrap_or(f64::INFINITY);
+    [
+        (
+            "|F_r|",
+            m.peak_robot_force.abs(),
+            top(|p| p.f_r.abs()),
+            m.peak_robot_force.abs().max(1e-3),
+        ),
+        (
+            "F_c",
+            m.peak_contact_force,
+            top(|p| p.f_c),
+            m.peak_contact_force.max(1e-3),
+        ),
+        (
+            "stroke",
+            m.max_stroke,
+            top(|p| p.s),
+            s.stops.stroke.max(m.max_stroke.abs()),
+        ),
+        (
+            "gas pressure",
+            gas,
+            top(|p| p.p1),
+            m.max_gas_pressure.unwrap_or(1.0).max(gas),
+        ),
+    ]
 }
 
 /// A run's impact counts: tool-object, forward stop, back stop.
