@@ -1,13 +1,14 @@
 //! The model's bounds of how far its event functions stray from their chords within a step
 //! (`OdeSystem::event_chord_bound`, and `event_chord_bounds`, all at once, as the integrator
 //! asks; they let it skip the interior samples of quiet steps) hold along whole runs: sampled
-//! at 64 points of every step's dense output, no function strays further than its bound. At the same points, each function evaluated alone
-//! (`OdeSystem::event`, what the root finder calls) equals its value among all of them.
+//! at 64 points of every step's dense output, no function strays further than its bound. At
+//! the same points, each function evaluated alone (`OdeSystem::event`, what the root finder
+//! calls) equals its value among all of them.
 
 use cushion_model::model::Model;
 use cushion_model::simulate::solver_options;
 use cushion_model::Scene;
-use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Status, Step};
+use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Status, Step, MAX_EVENTS};
 
 /// The model, watched: every step without an event is checked against the bounds.
 struct Watch<'a> {
@@ -63,7 +64,7 @@ impl Watch<'_> {
             .map(|i| self.m.event_chord_bound(i, step.t0, step.t1, &dev))
             .collect();
         // the integrator asks for all bounds at once: the same bounds, to the bit (NaN: none)
-        let mut all = [0.0; 16];
+        let mut all = [0.0; MAX_EVENTS];
         self.m
             .event_chord_bounds(step.t0, step.t1, &dev, &mut all[..n]);
         for i in 0..n {

@@ -152,6 +152,7 @@ pub trait OdeSystem<const N: usize> {
                 .unwrap_or(f64::NAN);
         }
     }
+
     /// Called at a located crossing of `g_i`, at time `t` (on the far side of the crossing).
     /// It may change `y` and the regime; it must say so by returning `Restart`.
     fn on_event(
