@@ -15,7 +15,9 @@
 //! larger sample need not hold the larger peak, least of all where the steps are long. The
 //! steps with the largest samples of up to three other peaks within [`rival_window`] of the
 //! best are kept as rivals and refined too (a peak is another one when the step ends have
-//! fallen more than [`RIVAL`] below the previous one's largest sample since it).
+//! fallen more than [`RIVAL`] below the previous one's largest sample since it). A step whose
+//! largest sample is overtaken after the quantity fell by less than that (one peak with two
+//! tops and a shallow dip) is kept as a rival as well: its top may be the higher one.
 
 use crate::model::{Regime, MAX_STATES};
 use crate::physics::Segment;
@@ -101,6 +103,8 @@ pub(crate) struct PeakCandidate {
     window: f64,
     /// A step has ended more than `RIVAL` below `best` since `at`.
     dipped: bool,
+    /// A step has ended below `best` since `at` (the quantity turned there, by any amount).
+    fell: bool,
     /// At most [`RIVALS`]; on the heap, allocated only when a rival comes up, so that the
     /// model, moved whole a few times per run, stays small.
     rivals: Vec<Option<Rival>>,
@@ -141,7 +145,8 @@ impl PeakCandidate {
     }
 
     /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
-    /// previous one becomes a rival if it was another peak, near enough.
+    /// previous one becomes a rival if the quantity fell after it (another peak, or another top
+    /// of this one), near enough.
     // on every new largest sample: as a call, with its moves of the step, it cost about 1 % of
     // a run's instructions
     #[inline(always)]
@@ -151,7 +156,11 @@ impl PeakCandidate {
             self.rivals[i] = None;
         }
         let window = value - self.window * value.abs();
-        if self.dipped && self.best >= window {
+        // the old step is kept if its quantity turned after it, even by less than `RIVAL` (then
+        // the two are one peak with a shallow dip, whose larger sample need not hold the
+        // larger top: a stroke that turns, falls 0.01 % and rises again to a sample above the
+        // first top's, 6.8 rtol below that top, in a 29 ms step); while it rises, never
+        if (self.dipped || self.fell) && self.best >= window {
             if let Some(old) = self.at.take() {
                 if let Some(i) = self.slot_for(self.best) {
                     self.rivals[i] = Some((old, self.after.take(), self.best));
@@ -168,6 +177,7 @@ impl PeakCandidate {
         self.after = None;
         self.best = value;
         self.dipped = false;
+        self.fell = false;
     }
 
     /// A step whose largest sample `value` is not a new largest one: kept as a rival if it
@@ -208,6 +218,9 @@ impl PeakCandidate {
 
     /// The sample at a step's end (after `set` or `offer` for that step).
     fn note_end(&mut self, value: f64) {
+        if value < self.best {
+            self.fell = true;
+        }
         if value < self.best - RIVAL * self.best.abs() {
             self.dipped = true;
         }
@@ -464,5 +477,33 @@ mod tests {
         let (t, v) = peak_of(f);
         assert!((t - 0.20125).abs() < 1e-6, "{t}");
         assert!((v - 1.003).abs() < 1e-12, "{v}");
+    }
+
+    #[test]
+    fn a_higher_top_before_a_shallow_dip_is_found() {
+        // Two tops 0.1 apart with a dip of 0.3 % between them (less than `RIVAL`): the first,
+        // 1.25e-3 from its nearest node, is higher by 3e-6 but sampled 7.5e-6 low; the second
+        // sits on a node. The second's sample is the largest, and without a dip of `RIVAL` the
+        // two count as one peak: the first top's step must still be searched.
+        let (left, right): (f64, f64) = (0.45125, 0.55);
+        let (m, d) = (0.5 * (left + right), 0.5 * (right - left));
+        let a = 0.003 / d.powi(4);
+        let b = 3e-6 / (2.0 * d);
+        let f = |t: f64| {
+            let u = (t - m) * (t - m) - d * d;
+            1.0 - a * u * u - b * (t - m)
+        };
+        // the true top, by a fine scan and a search around it
+        let t_top = (0..=100_000)
+            .map(|i| i as f64 * 1e-5)
+            .max_by(|x, y| f(*x).total_cmp(&f(*y)))
+            .unwrap();
+        assert!((t_top - left).abs() < 1e-4, "{t_top}");
+        let (_, top) = brent_max(f, t_top - 1e-4, t_top + 1e-4, (t_top, f(t_top)));
+        // the larger sample is the right top's
+        assert!(f(right) > f(0.4525).max(f(0.45)));
+        let (t, v) = peak_of(f);
+        assert!((t - t_top).abs() < 1e-5, "{t} vs {t_top}");
+        assert!((v - top).abs() < 1e-13, "{v} vs {top}");
     }
 }
