@@ -351,7 +351,11 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                         if self.opts.stiffness == StiffnessAction::Stop {
                             self.t = t + h;
                             self.y = attempt.y1;
-                            let msg = format!("the problem is stiff since t = {since} (h*lambda > 3.25 for 15 steps)");
+                            let msg = format!(
+                                "the problem is stiff since t = {since} (h*lambda > {:.3} for {} steps)",
+                                crate::stiffness::THRESHOLD,
+                                crate::stiffness::STIFF_STEPS
+                            );
                             return self.finish(Status::Stiff, msg);
                         }
                     }
