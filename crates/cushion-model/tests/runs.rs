@@ -1151,16 +1151,18 @@ fn a_run_held_at_the_stability_limit_is_flagged_stiff() {
     let r = simulate(&s, &RunOptions::default());
     assert_eq!(r.summary.status, RunStatus::Ok);
     assert!(r.summary.stats.stiff, "{:?}", r.summary.stats);
-    for name in [
-        "paper-hydraulic-dt70",
-        "paper-hydraulic-dt10",
-        "paper-bistable-dt70",
-        "paper-bistable-dt10",
-        "paper-rigid",
-    ] {
-        let r = simulate(&paper(name), &RunOptions::default());
-        assert!(!r.summary.stats.stiff, "{name}");
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../sweeps/scenes");
+    let mut papers = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if name.starts_with("paper-") {
+            let r = simulate(&paper(&name), &RunOptions::default());
+            assert!(!r.summary.stats.stiff, "{name}");
+            papers += 1;
+        }
     }
+    assert_eq!(papers, 5);
 }
 
 #[test]
