@@ -544,7 +544,7 @@ impl Model {
             ringing_cache: Vec::new(),
             fr_peak: PeakCandidate::default(),
             fc_peak: PeakCandidate::default(),
-            s_peak: PeakCandidate::starting_at(s0, rival_window(scene.solver.rtol)),
+            s_peak: PeakCandidate::default(),
             last_sample: None,
             force_sample: 0,
             sample_start: false,
@@ -574,6 +574,7 @@ impl Model {
         let window = rival_window(m.rtol);
         m.fr_peak = PeakCandidate::starting_at(e0.f_r.abs(), window);
         m.fc_peak = PeakCandidate::starting_at(e0.f_c, window);
+        m.s_peak = PeakCandidate::starting_at(s0, window);
         m.metrics.max_p1 = e0.p1;
         m.y0 = y0;
         m

@@ -156,11 +156,12 @@ impl PeakCandidate {
             self.rivals[i] = None;
         }
         let window = value - self.window * value.abs();
-        // the old step is kept if its quantity turned after it, even by less than `RIVAL` (then
-        // the two are one peak with a shallow dip, whose larger sample need not hold the
-        // larger top: a stroke that turns, falls 0.01 % and rises again to a sample above the
-        // first top's, 6.8 rtol below that top, in a 29 ms step); while it rises, never
-        if (self.dipped || self.fell) && self.best >= window {
+        // the old step is kept if its quantity turned after it (`fell`; a dip of `RIVAL` is a
+        // fall too), even by less than `RIVAL` (then the two are one peak with a shallow dip,
+        // whose larger sample need not hold the larger top: a stroke that turns, falls 0.01 %
+        // and rises again to a sample above the first top's, 6.8 rtol below that top, in a
+        // 29 ms step); while it rises, never
+        if self.fell && self.best >= window {
             if let Some(old) = self.at.take() {
                 if let Some(i) = self.slot_for(self.best) {
                     self.rivals[i] = Some((old, self.after.take(), self.best));
