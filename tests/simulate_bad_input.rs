@@ -94,6 +94,30 @@ fn nan_and_infinite_values() {
 }
 
 #[test]
+fn finite_values_that_overflow_the_bistable_element() {
+    // a spring so stiff that its preload pushes the tool 1e194 m into the forward stop, and a
+    // span whose square is beyond the largest double: refused before the run, by name
+    rejected(
+        &[
+            "--set",
+            "module=bistable",
+            "--set",
+            "bistable.spring_stiffness=1e300",
+        ],
+        &["bistable.spring_stiffness", "1e300", "finite"],
+    );
+    rejected(
+        &[
+            "--set",
+            "module=bistable",
+            "--set",
+            "bistable.half_span=1e200",
+        ],
+        &["bistable.half_span", "1e200", "finite"],
+    );
+}
+
+#[test]
 fn tolerance_out_of_range() {
     // no step meets rtol <= 10 eps; rtol >= 1 asks for no digit
     for v in ["1e-300", "2e-15", "1", "1e30", "-1e-6", "0"] {

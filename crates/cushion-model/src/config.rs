@@ -24,6 +24,7 @@
 //! Parsing never validates combinations; [`Scene::validate`] does (and `simulate` calls it).
 //! Every error names the key, the value and what is allowed.
 
+use crate::physics;
 use cushion_ode::{Method, StiffnessAction};
 use thiserror::Error;
 
@@ -805,6 +806,7 @@ impl Scene {
                 ),
             ));
         }
+        self.bistable_forces_are_finite()?;
         let s = &self.solver;
         // Hairer's DOPRI5 refuses rtol <= 10 eps (no step can meet it); 1 or more asks for no
         // digit at all
@@ -824,6 +826,49 @@ impl Scene {
             });
         }
         pos("solver.fixed_step", s.fixed_step)?;
+        Ok(())
+    }
+
+    /// The von Mises element's force and energy stay finite numbers from its preload
+    /// equilibrium on the forward stop to the back stop. Finite values large enough to
+    /// overflow there (a half span of 1e200 m, a spring of 1e300 N/m pressing the tool 1e194 m
+    /// into its stop) would otherwise start a run from a state or a slope that is not a number.
+    fn bistable_forces_are_finite(&self) -> Result<(), ConfigError> {
+        let b = &self.bistable;
+        let (k_b, w, h, e) = (b.spring_stiffness, b.half_span, b.apex_rise, b.offset);
+        if !(w * w + h * h).is_finite() {
+            let (key, v) = if w >= h {
+                ("bistable.half_span", w)
+            } else {
+                ("bistable.apex_rise", h)
+            };
+            return Err(invalid(
+                key,
+                v,
+                "must keep the spring length sqrt(w^2 + h^2) a finite number (w and h below 1e154 m)",
+            ));
+        }
+        let k_e = self.stops.stiffness;
+        let s0 = physics::preload_equilibrium(k_e, |s| physics::bistable_force(k_b, w, h, s + e));
+        let finite = |s: f64| {
+            let x = s + e;
+            physics::bistable_force(k_b, w, h, x).is_finite()
+                && physics::bistable_energy(k_b, w, h, x).is_finite()
+        };
+        let stop_force = k_e * s0.abs() * s0.abs().sqrt();
+        if !(s0.is_finite()
+            && stop_force.is_finite()
+            && [s0, 0.0, self.stops.stroke].map(finite) == [true; 3])
+        {
+            return Err(invalid(
+                "bistable.spring_stiffness",
+                k_b,
+                format!(
+                    "must keep the springs' force and energy finite numbers over the stroke and at their preload equilibrium on the forward stop (stops.stiffness = {}); a smaller stiffness",
+                    format_float(k_e)
+                ),
+            ));
+        }
         Ok(())
     }
 

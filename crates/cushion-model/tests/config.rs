@@ -260,3 +260,77 @@ fn rejects_main_chamber_smaller_than_the_stroke_volume() {
     assert!(m.contains("stroke"), "{m}");
     invalid_after("hydraulic.bulk_modulus", "-1");
 }
+
+/// Every key, for each module, set to values a user may mistype or push to an extreme: either
+/// `--set` or validation refuses it with a message naming the key and the value, or the scene
+/// runs to a status (an accepted extreme may end `max_steps` or `stiff`, never in a panic).
+#[test]
+fn every_key_at_extreme_values_is_refused_by_name_or_runs() {
+    let values = [
+        "0",
+        "-1",
+        "-0.0",
+        "1e-300",
+        "1e-30",
+        "0.5",
+        "2",
+        "1e30",
+        "1e308",
+        "-1e308",
+        "nan",
+        "inf",
+        "abc",
+        "true",
+        "18446744073709551617",
+    ];
+    let (mut refused, mut ran) = (0, 0);
+    for module in ["hydraulic", "bistable", "rigid"] {
+        for &key in Scene::keys() {
+            if key == "module" {
+                continue;
+            }
+            for value in values {
+                let mut s = Scene::default();
+                s.set_from_str("module", module).unwrap();
+                // a run that an extreme value keeps stepping is cut short: the point here is
+                // that it ends with a status
+                s.set_from_str("solver.max_steps", "20000").unwrap();
+                let err = match s.set_from_str(key, value) {
+                    Err(e) => Some(e),
+                    Ok(()) => s.validate().err(),
+                };
+                match err {
+                    Some(e) => {
+                        refused += 1;
+                        let m = e.to_string();
+                        let named = e.key().is_some_and(|k| m.contains(k));
+                        assert!(named, "{module} {key}={value}: {m}");
+                        if e.key() == Some(key) {
+                            // the value as typed, or as the key read it (`-0.0` is `-0` as
+                            // a number and `0` as a count)
+                            let read: Vec<String> = value
+                                .parse::<f64>()
+                                .map(|v| vec![v.to_string(), (v as i64).to_string()])
+                                .unwrap_or_default();
+                            assert!(
+                                m.contains(value) || read.iter().any(|r| m.contains(r.as_str())),
+                                "{module} {key}={value}: {m}"
+                            );
+                        }
+                    }
+                    None => {
+                        ran += 1;
+                        let r = simulate(&s, &RunOptions::default());
+                        assert_ne!(
+                            r.summary.status,
+                            RunStatus::Invalid,
+                            "{module} {key}={value}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+    // both paths were taken many times
+    assert!(refused > 500 && ran > 500, "refused {refused}, ran {ran}");
+}
