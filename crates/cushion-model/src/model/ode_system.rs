@@ -1,0 +1,153 @@
+//! The model as the integrator sees it: right-hand side, event functions and handlers, time
+//! stops and the per-step hook (`cushion_ode::OdeSystem`).
+
+use super::events::{EventKinematics, EV_BACK, EV_CAVITATION, EV_FWD, EV_OBJECT, EV_SENSOR};
+use super::Model;
+use crate::config::Module;
+use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
+
+impl<const N: usize> OdeSystem<N> for Model {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        let e = self.eval_inline(t, y.as_slice(), self.robot.current(), &self.regime);
+        let l = &self.layout;
+        let mut dy = State::<N>::zeros();
+        if let Some(i) = l.tool {
+            dy[i] = e.v_t;
+            dy[i + 1] = e.a_t;
+        }
+        if let Some(j) = l.object {
+            dy[j] = if self.regime.obj_stuck { 0.0 } else { e.v_p };
+            dy[j + 1] = e.a_p;
+        }
+        if let Some(k) = l.work {
+            dy[k] = e.p_work;
+        }
+        if let Some(k) = l.d_orifice {
+            dy[k] = e.p_orifice;
+        }
+        if let Some(k) = l.d_friction {
+            dy[k] = e.p_friction;
+        }
+        if let Some(k) = l.d_contact {
+            dy[k] = e.p_contact;
+        }
+        if let Some(k) = l.d_plane {
+            dy[k] = e.p_plane;
+        }
+        if let Some(k) = l.contact_impulse {
+            dy[k] = e.f_c;
+        }
+        if let Some(q) = l.liquid {
+            dy[q] = e.dp_m;
+            dy[q + 1] = e.flow;
+        }
+        if let Some(k) = l.e_liquid {
+            dy[k] = e.p_liquid;
+        }
+        dy
+    }
+
+    fn event_count(&self) -> usize {
+        self.n_events
+    }
+
+    fn events(&self, t: f64, y: &State<N>, g: &mut [f64]) {
+        let y = y.as_slice();
+        let k = EventKinematics::at(self, t, y);
+        let mut i = 0;
+        self.event_set.visit(|kind| {
+            if let Some(gi) = g.get_mut(i) {
+                *gi = self.event_value(kind, t, y, &k);
+            }
+            i += 1;
+        });
+    }
+
+    fn event(&self, i: usize, t: f64, y: &State<N>) -> f64 {
+        let y = y.as_slice();
+        let k = EventKinematics::at(self, t, y);
+        self.event_value(self.events[i], t, y, &k)
+    }
+
+    fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
+        let kind = *self.events.get(i)?;
+        self.event_straying(kind, t1 - t0, dev.as_slice())
+    }
+
+    fn event_chord_bounds(&self, t0: f64, t1: f64, dev: &State<N>, bounds: &mut [f64]) {
+        let dev = dev.as_slice();
+        let mut i = 0;
+        self.event_set.visit(|kind| {
+            if let Some(b) = bounds.get_mut(i) {
+                *b = self.event_straying(kind, t1 - t0, dev).unwrap_or(f64::NAN);
+            }
+            i += 1;
+        });
+    }
+
+    fn event_direction(&self, i: usize) -> Direction {
+        match self.events.get(i).copied() {
+            Some(EV_SENSOR) => Direction::Rising,
+            Some(EV_OBJECT) => {
+                if self.regime.obj_contact {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_FWD) => {
+                if self.regime.fwd {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_BACK) => {
+                if self.regime.back {
+                    Direction::Falling
+                } else {
+                    Direction::Rising
+                }
+            }
+            Some(EV_CAVITATION) => {
+                if self.regime.cavitating {
+                    Direction::Rising
+                } else {
+                    Direction::Falling
+                }
+            }
+            _ => Direction::Both,
+        }
+    }
+
+    fn on_event(&mut self, i: usize, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
+        let kind = self.events[i];
+        self.handle_event(kind, t, y.as_mut_slice(), ctl)
+    }
+
+    fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
+        self.force_sample = 2;
+        // the robot's acceleration jumps: so does the force on a tool that moves with it
+        self.sample_start = self.p.module == Module::Rigid || self.regime.tool_stuck;
+        if let Some(tb) = self.pending_brake {
+            if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {
+                self.pending_brake = None;
+                self.brake_now(t, y.as_slice(), ctl);
+                return EventAction::Continue;
+            }
+        }
+        if let Some(name) = self.robot.on_time(t) {
+            self.log_event(name, t, y.as_slice());
+            if self.can_end_early(t, y.as_slice()) {
+                self.early_end = Some(t);
+                return EventAction::Stop;
+            }
+        }
+        EventAction::Continue
+    }
+
+    fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
+        self.observe_step(step, ctl);
+    }
+}
