@@ -87,36 +87,22 @@ impl<const N: usize> OdeSystem<N> for Model {
     }
 
     fn event_direction(&self, i: usize) -> Direction {
+        // a contact's penetration rises through zero to begin and falls to end; the cavitation
+        // margin falls to begin and rises to end
+        let falling_if = |on: bool| {
+            if on {
+                Direction::Falling
+            } else {
+                Direction::Rising
+            }
+        };
+        let r = &self.regime;
         match self.events.get(i).copied() {
             Some(EV_SENSOR) => Direction::Rising,
-            Some(EV_OBJECT) => {
-                if self.regime.obj_contact {
-                    Direction::Falling
-                } else {
-                    Direction::Rising
-                }
-            }
-            Some(EV_FWD) => {
-                if self.regime.fwd {
-                    Direction::Falling
-                } else {
-                    Direction::Rising
-                }
-            }
-            Some(EV_BACK) => {
-                if self.regime.back {
-                    Direction::Falling
-                } else {
-                    Direction::Rising
-                }
-            }
-            Some(EV_CAVITATION) => {
-                if self.regime.cavitating {
-                    Direction::Rising
-                } else {
-                    Direction::Falling
-                }
-            }
+            Some(EV_OBJECT) => falling_if(r.obj_contact),
+            Some(EV_FWD) => falling_if(r.fwd),
+            Some(EV_BACK) => falling_if(r.back),
+            Some(EV_CAVITATION) => falling_if(!r.cavitating),
             _ => Direction::Both,
         }
     }
