@@ -1,0 +1,195 @@
+//! Validation of a scene: every value in its range and every combination consistent (SPEC
+//! and issue 3), refused with a message that names the key, the value and what is allowed.
+
+use super::{format_float, invalid, ConfigError, Scene, KEY_LIST};
+use crate::physics;
+
+impl Scene {
+    /// Check every value and every combination (SPEC and issue 3: positive masses, orifice
+    /// smaller than piston, gas volume positive over the stroke, sensor inside the stroke,
+    /// finite numbers, ...). Every section is checked whatever the module, so a scene stays
+    /// valid when a sweep switches `module`.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        // 1. every number finite
+        for key in KEY_LIST {
+            if let Some(toml::Value::Float(f)) = self.get_field(key) {
+                if !f.is_finite() {
+                    return Err(invalid(key, f, "must be a finite number"));
+                }
+            }
+        }
+        let pos = |key: &str, v: f64| {
+            if v > 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(key, v, "must be > 0"))
+            }
+        };
+        let nonneg = |key: &str, v: f64| {
+            if v >= 0.0 {
+                Ok(())
+            } else {
+                Err(invalid(key, v, "must be >= 0"))
+            }
+        };
+        pos("t_end", self.t_end)?;
+        pos("robot.approach_speed", self.robot.approach_speed)?;
+        pos("robot.brake_deceleration", self.robot.brake_deceleration)?;
+        nonneg("robot.dead_time", self.robot.dead_time)?;
+        pos("robot.acceleration", self.robot.acceleration)?;
+        pos("tool.mass", self.tool.mass)?;
+        nonneg("tool.viscous_friction", self.tool.viscous_friction)?;
+        nonneg("tool.dry_friction", self.tool.dry_friction)?;
+        pos("object.mass", self.object.mass)?;
+        pos("object.gap", self.object.gap)?;
+        pos("object.contact_stiffness", self.object.contact_stiffness)?;
+        nonneg("object.contact_damping", self.object.contact_damping)?;
+        nonneg("object.plane_friction", self.object.plane_friction)?;
+        pos("stops.stroke", self.stops.stroke)?;
+        pos("stops.stiffness", self.stops.stiffness)?;
+        nonneg("stops.damping", self.stops.damping)?;
+        let l = self.stops.stroke;
+        let ss = self.tool.sensor_threshold;
+        if !(ss > 0.0 && ss < l) {
+            return Err(invalid(
+                "tool.sensor_threshold",
+                ss,
+                format!(
+                    "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
+                    format_float(l)
+                ),
+            ));
+        }
+        let h = &self.hydraulic;
+        pos("hydraulic.piston_radius", h.piston_radius)?;
+        pos("hydraulic.orifice_radius", h.orifice_radius)?;
+        if h.orifice_radius >= h.piston_radius {
+            return Err(invalid(
+                "hydraulic.orifice_radius",
+                h.orifice_radius,
+                format!(
+                    "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
+                    format_float(h.piston_radius)
+                ),
+            ));
+        }
+        pos("hydraulic.loss_coefficient", h.loss_coefficient)?;
+        pos("hydraulic.liquid_density", h.liquid_density)?;
+        pos("hydraulic.gas_pressure", h.gas_pressure)?;
+        pos("hydraulic.gas_volume", h.gas_volume)?;
+        let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
+        if h.gas_volume - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.gas_volume",
+                h.gas_volume,
+                format!(
+                    "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                    format_float(a_p * l)
+                ),
+            ));
+        }
+        let k = h.gas_exponent;
+        if !(k > 1.0 && k <= 2.0) {
+            return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+        }
+        nonneg("hydraulic.bulk_modulus", h.bulk_modulus)?;
+        if h.chamber_volume - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.chamber_volume",
+                h.chamber_volume,
+                format!(
+                    "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                    format_float(a_p * l)
+                ),
+            ));
+        }
+        if h.cavitation_pressure >= h.gas_pressure {
+            return Err(invalid(
+                "hydraulic.cavitation_pressure",
+                h.cavitation_pressure,
+                format!(
+                    "must be < hydraulic.gas_pressure = {}",
+                    format_float(h.gas_pressure)
+                ),
+            ));
+        }
+        let b = &self.bistable;
+        pos("bistable.spring_stiffness", b.spring_stiffness)?;
+        pos("bistable.half_span", b.half_span)?;
+        pos("bistable.apex_rise", b.apex_rise)?;
+        if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
+            return Err(invalid(
+                "bistable.offset",
+                b.offset,
+                format!(
+                    "must lie in [0, bistable.apex_rise = {})",
+                    format_float(b.apex_rise)
+                ),
+            ));
+        }
+        self.bistable_forces_are_finite()?;
+        let s = &self.solver;
+        // Hairer's DOPRI5 refuses rtol <= 10 eps (no step can meet it); 1 or more asks for no
+        // digit at all
+        if !(s.rtol > 10.0 * f64::EPSILON && s.rtol < 1.0) {
+            return Err(invalid(
+                "solver.rtol",
+                s.rtol,
+                "must lie in (10 eps = 2.2e-15, 1)",
+            ));
+        }
+        pos("solver.atol", s.atol)?;
+        if s.max_steps < 1 {
+            return Err(ConfigError::InvalidValue {
+                key: "solver.max_steps".into(),
+                value: s.max_steps.to_string(),
+                allowed: "must be >= 1".into(),
+            });
+        }
+        pos("solver.fixed_step", s.fixed_step)?;
+        Ok(())
+    }
+
+    /// The von Mises element's force and energy stay finite numbers from its preload
+    /// equilibrium on the forward stop to the back stop. Finite values large enough to
+    /// overflow there (a half span of 1e200 m, a spring of 1e300 N/m pressing the tool 1e194 m
+    /// into its stop) would otherwise start a run from a state or a slope that is not a number.
+    fn bistable_forces_are_finite(&self) -> Result<(), ConfigError> {
+        let b = &self.bistable;
+        let (k_b, w, h, e) = (b.spring_stiffness, b.half_span, b.apex_rise, b.offset);
+        if !(w * w + h * h).is_finite() {
+            let (key, v) = if w >= h {
+                ("bistable.half_span", w)
+            } else {
+                ("bistable.apex_rise", h)
+            };
+            return Err(invalid(
+                key,
+                v,
+                "must keep the spring length sqrt(w^2 + h^2) a finite number (w and h below 1e154 m)",
+            ));
+        }
+        let k_e = self.stops.stiffness;
+        let s0 = physics::preload_equilibrium(k_e, |s| physics::bistable_force(k_b, w, h, s + e));
+        let finite = |s: f64| {
+            let x = s + e;
+            physics::bistable_force(k_b, w, h, x).is_finite()
+                && physics::bistable_energy(k_b, w, h, x).is_finite()
+        };
+        let stop_force = k_e * s0.abs() * s0.abs().sqrt();
+        if !(s0.is_finite()
+            && stop_force.is_finite()
+            && [s0, 0.0, self.stops.stroke].map(finite) == [true; 3])
+        {
+            return Err(invalid(
+                "bistable.spring_stiffness",
+                k_b,
+                format!(
+                    "must keep the springs' force and energy finite numbers over the stroke and at their preload equilibrium on the forward stop (stops.stiffness = {}); a smaller stiffness",
+                    format_float(k_e)
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
