@@ -181,12 +181,26 @@ impl Scene {
             && stop_force.is_finite()
             && [s0, 0.0, self.stops.stroke].map(finite) == [true; 3])
         {
+            // the two stiffnesses set the preload's depth: name the one further from its
+            // default (in orders of magnitude), and the other in the message
+            let d = Scene::default();
+            let off = |v: f64, v0: f64| (v / v0).log10().abs();
+            let (spring, stop) = (
+                ("bistable.spring_stiffness", k_b, "a smaller"),
+                ("stops.stiffness", k_e, "a larger"),
+            );
+            let ((key, v, fix), (other, w, _)) =
+                if off(k_b, d.bistable.spring_stiffness) >= off(k_e, d.stops.stiffness) {
+                    (spring, stop)
+                } else {
+                    (stop, spring)
+                };
             return Err(invalid(
-                "bistable.spring_stiffness",
-                k_b,
+                key,
+                v,
                 format!(
-                    "must keep the springs' force and energy finite numbers over the stroke and at their preload equilibrium on the forward stop (stops.stiffness = {}); a smaller stiffness",
-                    format_float(k_e)
+                    "must keep the bistable springs' force and energy finite numbers over the stroke and at their preload equilibrium on the forward stop (with {other} = {}): {fix} value",
+                    format_float(w)
                 ),
             ));
         }
