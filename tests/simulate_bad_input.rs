@@ -115,6 +115,22 @@ fn finite_values_that_overflow_the_bistable_element() {
         ],
         &["bistable.half_span", "1e200", "finite"],
     );
+    // both stiffnesses set the preload's depth: the one further from its default is named
+    rejected(
+        &[
+            "--set",
+            "module=bistable",
+            "--set",
+            "bistable.spring_stiffness=1e200",
+            "--set",
+            "stops.stiffness=1e-200",
+        ],
+        &[
+            "`stops.stiffness` = 1e-200",
+            "bistable.spring_stiffness = 1e200",
+            "larger",
+        ],
+    );
 }
 
 #[test]
