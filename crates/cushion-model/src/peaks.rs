@@ -77,6 +77,12 @@ pub(crate) fn rival_window(rtol: f64) -> f64 {
     (RIVAL * (rtol / 1e-6).powf(0.4)).clamp(RIVAL, 0.2)
 }
 
+/// `v` lowered by the fraction `by` of its size: the edge of a window (or a dip) below a sample.
+#[inline(always)]
+fn below(v: f64, by: f64) -> f64 {
+    v - by * v.abs()
+}
+
 /// Other peaks kept besides the best (the largest samples among those in the window).
 const RIVALS: usize = 3;
 
@@ -155,7 +161,7 @@ impl PeakCandidate {
             // the rising rival's peak is this one: `at` takes it over
             self.rivals[i] = None;
         }
-        let window = value - self.window * value.abs();
+        let window = below(value, self.window);
         // the old step is kept if its quantity turned after it (`fell`; a dip of `RIVAL` is a
         // fall too), even by less than `RIVAL` (then the two are one peak with a shallow dip,
         // whose larger sample need not hold the larger top: a stroke that turns, falls 0.01 %
@@ -184,8 +190,7 @@ impl PeakCandidate {
     /// A step whose largest sample `value` is not a new largest one: kept as a rival if it
     /// belongs to another peak and comes near the best (`step` builds it).
     fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
-        if !(self.at.is_some() && self.dipped && value >= self.best - self.window * self.best.abs())
-        {
+        if !(self.at.is_some() && self.dipped && value >= below(self.best, self.window)) {
             return;
         }
         match self.rising {
@@ -222,12 +227,12 @@ impl PeakCandidate {
         if value < self.best {
             self.fell = true;
         }
-        if value < self.best - RIVAL * self.best.abs() {
+        if value < below(self.best, RIVAL) {
             self.dipped = true;
         }
         if let Some(i) = self.rising {
             let top = self.rivals[i].as_ref().map_or(f64::INFINITY, |r| r.2);
-            if value < top - RIVAL * top.abs() {
+            if value < below(top, RIVAL) {
                 self.rising = None;
             }
         }
