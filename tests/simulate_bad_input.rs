@@ -95,8 +95,9 @@ fn nan_and_infinite_values() {
 
 #[test]
 fn finite_values_that_overflow_the_bistable_element() {
-    // a spring so stiff that its preload pushes the tool 1e194 m into the forward stop, and a
-    // span whose square is beyond the largest double: refused before the run, by name
+    // a spring so stiff that its preload equilibrium, as the engine finds it, has an infinite
+    // force, and a span whose square is beyond the largest double: refused before the run, by
+    // name
     rejected(
         &[
             "--set",

@@ -150,10 +150,12 @@ impl Scene {
         Ok(())
     }
 
-    /// The von Mises element's force and energy stay finite numbers from its preload
-    /// equilibrium on the forward stop to the back stop. Finite values large enough to
-    /// overflow there (a half span of 1e200 m, a spring of 1e300 N/m pressing the tool 1e194 m
-    /// into its stop) would otherwise start a run from a state or a slope that is not a number.
+    /// The von Mises element's force and energy stay finite numbers over the stroke and at its
+    /// preload equilibrium on the forward stop, as `Model::new` finds it. Finite values large
+    /// enough to overflow there would otherwise start a run from a state or a slope that is not
+    /// a number: a half span of 1e200 m (`w^2` overflows), or a spring of 1e300 N/m, whose
+    /// preload of 2.7e296 N brackets the equilibrium by 5.8e193 m; the root search's 200
+    /// bisections of that bracket end at a depth of 1.8e133 m, where the force is infinite.
     fn bistable_forces_are_finite(&self) -> Result<(), ConfigError> {
         let b = &self.bistable;
         let (k_b, w, h, e) = (b.spring_stiffness, b.half_span, b.apex_rise, b.offset);
@@ -179,7 +181,7 @@ impl Scene {
         let stop_force = k_e * s0.abs() * s0.abs().sqrt();
         if !(s0.is_finite()
             && stop_force.is_finite()
-            && [s0, 0.0, self.stops.stroke].map(finite) == [true; 3])
+            && [s0, 0.0, self.stops.stroke].into_iter().all(finite))
         {
             // the two stiffnesses set the preload's depth: name the one further from its
             // default (in orders of magnitude), and the other in the message
@@ -189,7 +191,7 @@ impl Scene {
                 ("bistable.spring_stiffness", k_b, "a smaller"),
                 ("stops.stiffness", k_e, "a larger"),
             );
-            let ((key, v, fix), (other, w, _)) =
+            let ((key, v, fix), (other, other_v, _)) =
                 if off(k_b, d.bistable.spring_stiffness) >= off(k_e, d.stops.stiffness) {
                     (spring, stop)
                 } else {
@@ -200,7 +202,7 @@ impl Scene {
                 v,
                 format!(
                     "must keep the bistable springs' force and energy finite numbers over the stroke and at their preload equilibrium on the forward stop (with {other} = {}): {fix} value",
-                    format_float(w)
+                    format_float(other_v)
                 ),
             ));
         }
