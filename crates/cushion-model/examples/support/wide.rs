@@ -83,12 +83,7 @@ pub fn peaks_and_samples(s: &Scene, r: &RunResult) -> [(&'static str, f64, f64, 
             top(|p| p.s),
             s.stops.stroke.max(m.max_stroke.abs()),
         ),
-        (
-            "gas pressure",
-            gas,
-            top(|p| p.p1),
-            m.max_gas_pressure.unwrap_or(1.0).max(gas),
-        ),
+        ("gas pressure", gas, top(|p| p.p1), gas),
     ]
 }
 
