@@ -6,20 +6,13 @@
 //! Python keyword overrides). All values are SI; no unit is ever part of a key.
 //!
 //! Extensions beyond SPEC section 7 (all optional, with defaults that reproduce the SPEC):
+//! `object.enabled`, `energy.ledger`, `solver.max_steps`, `solver.fixed_step`,
+//! `solver.stiffness`, `solver.early_end`, `solver.ringing_tail`, `hydraulic.cavitation`,
+//! `hydraulic.cavitation_pressure`, `hydraulic.bulk_modulus`, `hydraulic.chamber_volume`.
 //!
-//! | key | meaning | default |
-//! |---|---|---|
-//! | `object.enabled` | `false`: no object in the scene (free tool) | `true` |
-//! | `energy.ledger` | carry the energy ledger's quadrature states | `true` |
-//! | `solver.max_steps` | most steps before status `max_steps` | 1000000 |
-//! | `solver.fixed_step` | step of the fixed-step methods `rk4`, `euler`, s | 1e-5 |
-//! | `solver.stiffness` | Hairer's stiffness test: `warn`, `stop` or `off` | `"warn"` |
-//! | `solver.early_end` | stop once nothing can change any more (results extrapolated) | `true` |
-//! | `solver.ringing_tail` | with `early_end`: once only the tool's small ringing on its stop is left, write it in closed form | `true` |
-//! | `hydraulic.cavitation` | bound the main chamber pressure: `p_m >= cavitation_pressure` | `false` |
-//! | `hydraulic.cavitation_pressure` | `p_cav`, Pa | 0.0 |
-//! | `hydraulic.bulk_modulus` | liquid bulk modulus, Pa; > 0 selects the compressible model | 0.0 |
-//! | `hydraulic.chamber_volume` | main chamber liquid volume at `s = 0`, m^3 | 4e-5 |
+//! Every key's unit and description live in one list, the `scene_keys!` invocation below;
+//! [`Scene::key_info`] returns it, and `docs/scene-keys.md` is its table with the defaults (a
+//! test keeps that page current).
 //!
 //! Parsing never validates combinations; [`Scene::validate`] does (and `simulate` calls it).
 //! Every error names the key, the value and what is allowed.
@@ -487,9 +480,28 @@ impl KeyValue for StiffnessAction {
     }
 }
 
+/// One key a user may type: its name, its SI unit and what it sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KeyInfo {
+    /// `section.name` (or `module`, `t_end`).
+    pub key: &'static str,
+    /// SI unit: `"s"`, `"m"`, `"N/m^1.5"`, ...; `"-"` for a dimensionless number, `""` for a
+    /// choice of words or a switch (and for `solver.atol`, which applies to every state in its own
+    /// unit).
+    pub unit: &'static str,
+    /// One line in a user's words, with the symbol of SPEC and the allowed values.
+    pub description: &'static str,
+}
+
 macro_rules! scene_keys {
-    ($( $key:literal => $($field:ident).+ ; )*) => {
+    ($( $key:literal => $($field:ident).+ , $unit:literal , $description:literal ; )*) => {
         const KEY_LIST: &[&str] = &[$($key),*];
+
+        const KEY_INFO: &[KeyInfo] = &[$(KeyInfo {
+            key: $key,
+            unit: $unit,
+            description: $description,
+        }),*];
 
         impl Scene {
             fn set_field(&mut self, key: &str, v: &toml::Value) -> Result<(), ConfigError> {
@@ -508,51 +520,96 @@ macro_rules! scene_keys {
     };
 }
 
+// key => field, unit, description
 scene_keys! {
-    "module" => module;
-    "t_end" => t_end;
-    "robot.approach_speed" => robot.approach_speed;
-    "robot.brake_deceleration" => robot.brake_deceleration;
-    "robot.dead_time" => robot.dead_time;
-    "robot.start" => robot.start;
-    "robot.acceleration" => robot.acceleration;
-    "tool.mass" => tool.mass;
-    "tool.sensor_threshold" => tool.sensor_threshold;
-    "tool.viscous_friction" => tool.viscous_friction;
-    "tool.dry_friction" => tool.dry_friction;
-    "object.enabled" => object.enabled;
-    "object.mass" => object.mass;
-    "object.gap" => object.gap;
-    "object.contact_stiffness" => object.contact_stiffness;
-    "object.contact_damping" => object.contact_damping;
-    "object.plane_friction" => object.plane_friction;
-    "stops.stroke" => stops.stroke;
-    "stops.stiffness" => stops.stiffness;
-    "stops.damping" => stops.damping;
-    "hydraulic.piston_radius" => hydraulic.piston_radius;
-    "hydraulic.orifice_radius" => hydraulic.orifice_radius;
-    "hydraulic.loss_coefficient" => hydraulic.loss_coefficient;
-    "hydraulic.liquid_density" => hydraulic.liquid_density;
-    "hydraulic.gas_pressure" => hydraulic.gas_pressure;
-    "hydraulic.gas_volume" => hydraulic.gas_volume;
-    "hydraulic.gas_exponent" => hydraulic.gas_exponent;
-    "hydraulic.cavitation" => hydraulic.cavitation;
-    "hydraulic.cavitation_pressure" => hydraulic.cavitation_pressure;
-    "hydraulic.bulk_modulus" => hydraulic.bulk_modulus;
-    "hydraulic.chamber_volume" => hydraulic.chamber_volume;
-    "bistable.spring_stiffness" => bistable.spring_stiffness;
-    "bistable.half_span" => bistable.half_span;
-    "bistable.apex_rise" => bistable.apex_rise;
-    "bistable.offset" => bistable.offset;
-    "solver.method" => solver.method;
-    "solver.rtol" => solver.rtol;
-    "solver.atol" => solver.atol;
-    "solver.max_steps" => solver.max_steps;
-    "solver.fixed_step" => solver.fixed_step;
-    "solver.stiffness" => solver.stiffness;
-    "solver.early_end" => solver.early_end;
-    "solver.ringing_tail" => solver.ringing_tail;
-    "energy.ledger" => energy.ledger;
+    "module" => module, "",
+        "compliance module between flange and tool: \"hydraulic\", \"bistable\" or \"rigid\" (tool bolted to the flange)";
+    "t_end" => t_end, "s",
+        "end of simulated time (> 0)";
+    "robot.approach_speed" => robot.approach_speed, "m/s",
+        "v_max: flange speed before the impact (> 0)";
+    "robot.brake_deceleration" => robot.brake_deceleration, "m/s^2",
+        "a_brake: deceleration of the robot once it brakes, until it stands (> 0)";
+    "robot.dead_time" => robot.dead_time, "s",
+        "DT: delay from the impact sensor switching (rigid: first contact) to the start of braking (>= 0)";
+    "robot.start" => robot.start, "",
+        "how the robot starts: \"cruising\" (moving at v_max at t = 0) or \"rest\" (accelerating at robot.acceleration)";
+    "robot.acceleration" => robot.acceleration, "m/s^2",
+        "a_acc: acceleration from rest up to v_max, with robot.start = \"rest\" only (> 0)";
+    "tool.mass" => tool.mass, "kg",
+        "m_t: mass of the tool, the end-effector (> 0)";
+    "tool.sensor_threshold" => tool.sensor_threshold, "m",
+        "s_sensor: stroke at which the impact sensor switches, inside (0, stops.stroke)";
+    "tool.viscous_friction" => tool.viscous_friction, "kg/s",
+        "b: viscous friction between tool and module, force b times their sliding speed (>= 0)";
+    "tool.dry_friction" => tool.dry_friction, "N",
+        "d: Coulomb (dry) friction force between tool and module; > 0 adds stick-slip (>= 0)";
+    "object.enabled" => object.enabled, "",
+        "true: an object lies on the plane; false: no object (free tool, no contact)";
+    "object.mass" => object.mass, "kg",
+        "m_p: mass of the object (> 0)";
+    "object.gap" => object.gap, "m",
+        "initial distance from the tool's face to the object's face (> 0)";
+    "object.contact_stiffness" => object.contact_stiffness, "N/m^1.5",
+        "k_c: Hunt-Crossley stiffness of the tool-object contact (> 0)";
+    "object.contact_damping" => object.contact_damping, "N s/m^2.5",
+        "chi_c: Hunt-Crossley damping of the tool-object contact (>= 0)";
+    "object.plane_friction" => object.plane_friction, "-",
+        "mu_plane: Coulomb friction coefficient between object and plane; 0 = off (>= 0)";
+    "stops.stroke" => stops.stroke, "m",
+        "L: stroke, the distance between the module's forward and back end-stops (> 0)";
+    "stops.stiffness" => stops.stiffness, "N/m^1.5",
+        "k_e: Hunt-Crossley stiffness of both end-stops (> 0)";
+    "stops.damping" => stops.damping, "N s/m^2.5",
+        "chi_e: Hunt-Crossley damping of both end-stops (>= 0)";
+    "hydraulic.piston_radius" => hydraulic.piston_radius, "m",
+        "R_p: radius of the main cylinder's piston (> 0)";
+    "hydraulic.orifice_radius" => hydraulic.orifice_radius, "m",
+        "R_o: radius of the orifice between main and auxiliary cylinder, in (0, R_p)";
+    "hydraulic.loss_coefficient" => hydraulic.loss_coefficient, "-",
+        "c0: loss coefficient of the orifice (> 0)";
+    "hydraulic.liquid_density" => hydraulic.liquid_density, "kg/m^3",
+        "rho_L: density of the hydraulic liquid (> 0)";
+    "hydraulic.gas_pressure" => hydraulic.gas_pressure, "Pa",
+        "p10: gas pressure with the tool on its forward stop (stroke s = 0) (> 0)";
+    "hydraulic.gas_volume" => hydraulic.gas_volume, "m^3",
+        "V_g0: gas volume with the tool on its forward stop (s = 0); must exceed the stroke's volume A_p * L";
+    "hydraulic.gas_exponent" => hydraulic.gas_exponent, "-",
+        "kappa: adiabatic exponent of the gas, in (1, 2]";
+    "hydraulic.cavitation" => hydraulic.cavitation, "",
+        "true: the main chamber pressure cannot fall below hydraulic.cavitation_pressure";
+    "hydraulic.cavitation_pressure" => hydraulic.cavitation_pressure, "Pa",
+        "p_cav: lowest main chamber pressure with hydraulic.cavitation on, below hydraulic.gas_pressure";
+    "hydraulic.bulk_modulus" => hydraulic.bulk_modulus, "Pa",
+        "beta: bulk modulus of the liquid; 0 = incompressible (lumped model), > 0 = compressible model (stiff; about 1.5e9 for oil)";
+    "hydraulic.chamber_volume" => hydraulic.chamber_volume, "m^3",
+        "V_m0: liquid volume of the main chamber at s = 0, used with hydraulic.bulk_modulus > 0; must exceed A_p * L";
+    "bistable.spring_stiffness" => bistable.spring_stiffness, "N/m",
+        "k_b: stiffness of each of the two springs of the snap-through element (> 0)";
+    "bistable.half_span" => bistable.half_span, "m",
+        "w: half span of the snap-through element (> 0)";
+    "bistable.apex_rise" => bistable.apex_rise, "m",
+        "h: apex rise of the snap-through element; stable at 0 and 2h (> 0)";
+    "bistable.offset" => bistable.offset, "m",
+        "e: distance from the element's first stable point to the forward stop, which preloads the tool onto that stop, in [0, h)";
+    "solver.method" => solver.method, "",
+        "integration method: \"dp5\" (adaptive Dormand-Prince 5(4)), \"rk4\" or \"euler\" (fixed step solver.fixed_step)";
+    "solver.rtol" => solver.rtol, "-",
+        "relative tolerance of the adaptive method, in (2.2e-15, 1)";
+    "solver.atol" => solver.atol, "",
+        "absolute tolerance of the adaptive method, applied to every state in its own SI unit (> 0)";
+    "solver.max_steps" => solver.max_steps, "-",
+        "most solver steps before the run ends with status max_steps (>= 1)";
+    "solver.fixed_step" => solver.fixed_step, "s",
+        "step size of the fixed-step methods \"rk4\" and \"euler\" (> 0)";
+    "solver.stiffness" => solver.stiffness, "",
+        "what Hairer's stiffness test does when it fires: \"warn\" (flag it), \"stop\" (status stiff) or \"off\"";
+    "solver.early_end" => solver.early_end, "",
+        "true: end the run once nothing can change any more (results extrapolated to t_end)";
+    "solver.ringing_tail" => solver.ringing_tail, "",
+        "true (with solver.early_end): once only the tool's small ringing on its stop is left, write it in closed form";
+    "energy.ledger" => energy.ledger, "",
+        "true: integrate robot work and dissipations for the energy ledger (extra states)";
 }
 
 const SECTIONS: &[&str] = &[
@@ -683,6 +740,12 @@ impl Scene {
     /// Every key a user may type, in SPEC order (extensions beside their section).
     pub fn keys() -> &'static [&'static str] {
         KEY_LIST
+    }
+
+    /// Every key's unit and description, in the order of [`Scene::keys`]
+    /// (`docs/scene-keys.md` is this table with the defaults).
+    pub fn key_info() -> &'static [KeyInfo] {
+        KEY_INFO
     }
 
     /// The scene as a TOML table (every key, for provenance): `module` and `t_end` at the top,
