@@ -24,6 +24,9 @@ pub fn run(args: MergeArgs) -> i32 {
         out: args.out,
     }) {
         Ok(o) => {
+            for w in &o.warnings {
+                eprintln!("cushion merge: warning: {w}");
+            }
             if !args.quiet {
                 println!(
                     "{}: {} runs merged ({} not ok)",

@@ -34,3 +34,17 @@ pub fn run(cli: Cli) -> i32 {
         Command::Merge(a) => merge::run(a),
     }
 }
+
+/// The git commit of the working folder, when there is one (for `provenance.json`).
+pub fn git_commit() -> Option<String> {
+    let out = std::process::Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .stderr(std::process::Stdio::null())
+        .output()
+        .ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    let s = String::from_utf8(out.stdout).ok()?.trim().to_string();
+    (!s.is_empty()).then_some(s)
+}

@@ -75,11 +75,14 @@ fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
         .validate()
         .map_err(|e| Failure::Input(e.to_string()))?;
     let outputs = outputs(args)?;
-    let sample_interval = sample_interval(args, &scene)?;
-
+    let recording = RunOptions::recording(&scene, args.sample_interval)
+        .map_err(|e| {
+            let dt = args.sample_interval.unwrap_or_default();
+            Failure::Input(format!("--sample-interval = {dt}: {e}"))
+        })?;
     let opts = RunOptions {
         trajectory: !outputs.is_empty(),
-        sample_interval,
+        ..recording
     };
     let result = simulate(&scene, &opts);
     let summary = &result.summary;
@@ -214,17 +217,6 @@ fn outputs(args: &SimulateArgs) -> Result<Vec<(Output, PathBuf)>, Failure> {
         out.push((kind, path.clone()));
     }
     Ok(out)
-}
-
-fn sample_interval(args: &SimulateArgs, scene: &Scene) -> Result<Option<f64>, Failure> {
-    match args.sample_interval {
-        Some(dt) if !dt.is_finite() || dt < 0.0 => Err(Failure::Input(format!(
-            "--sample-interval = {dt}: expected a finite number of seconds >= 0 (0: steps and events only)"
-        ))),
-        Some(0.0) => Ok(None),
-        Some(dt) => Ok(Some(dt)),
-        None => Ok(float_key(scene, "t_end").map(|t| t / 2000.0).filter(|dt| *dt > 0.0)),
-    }
 }
 
 fn float_key(scene: &Scene, key: &str) -> Option<f64> {

@@ -1,9 +1,12 @@
 //! `cushion sweep FILE [--out DIR] [--threads N] [--resume] [--shard K/N] [--quiet]`: run a
-//! sweep file in parallel (see `cushion_sweep::runner` for what lands on disk).
+//! sweep file in parallel (see `cushion_sweep::runner` for what lands on disk). This command
+//! draws the progress bar, prints the warnings and the closing line, and finds the git commit
+//! for the provenance; the library does none of that.
 
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
-use cushion_sweep::{run_sweep, SweepOptions};
+use cushion_sweep::{run_sweep, Hooks, SweepError, SweepFile, SweepOptions};
 
 #[derive(clap::Args, Debug)]
 pub struct SweepArgs {
@@ -26,6 +29,12 @@ pub struct SweepArgs {
     pub quiet: bool,
 }
 
+/// Test hook of the end-to-end tests: end the process abruptly (exit status 99, no cleanup, as
+/// a kill would) once this many chunks were written by this process.
+const ABORT_ENV: &str = "CUSHION_SWEEP_ABORT_AFTER_CHUNKS";
+/// Print the time of each phase of the sweep on standard error.
+const TIMING_ENV: &str = "CUSHION_SWEEP_TIMING";
+
 fn parse_shard(s: &str) -> Result<(usize, usize), String> {
     let err = || format!("`{s}`: expected K/N with 1 <= K <= N, e.g. 2/4");
     let (k, n) = s.split_once('/').ok_or_else(err)?;
@@ -40,31 +49,90 @@ fn parse_shard(s: &str) -> Result<(usize, usize), String> {
 }
 
 pub fn run(args: SweepArgs) -> i32 {
-    let opts = SweepOptions {
-        file: args.file,
-        out: args.out,
-        threads: args.threads,
-        resume: args.resume,
-        shard: args.shard,
-        quiet: args.quiet,
-    };
-    match run_sweep(&opts) {
-        Ok(o) => {
-            if !args.quiet {
-                println!(
-                    "{}: {} runs ({} computed now, {} not ok) in {:.2} s",
-                    o.out_dir.display(),
-                    o.runs_total,
-                    o.runs_done_now,
-                    o.runs_failed,
-                    o.wall_seconds
-                );
-            }
-            0
-        }
+    match run_inner(&args) {
+        Ok(()) => 0,
         Err(e) => {
             eprintln!("cushion sweep: {e}");
             e.exit_code()
         }
     }
+}
+
+fn run_inner(args: &SweepArgs) -> Result<(), SweepError> {
+    if args.threads == Some(0) {
+        return Err(SweepError::Config("--threads must be at least 1".into()));
+    }
+    let sweep = SweepFile::from_file(&args.file).map_err(SweepError::Config)?;
+    let opts = SweepOptions {
+        out: args.out.clone(),
+        threads: args.threads,
+        resume: args.resume,
+        shard: args.shard,
+        git_commit: super::git_commit(),
+    };
+    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(progress_bar);
+    let progress = |done: u64, total: u64| {
+        if let Some(pb) = &bar {
+            if pb.length() != Some(total) {
+                pb.set_length(total);
+                pb.set_position(done);
+                pb.reset_eta();
+            } else {
+                pb.set_position(done);
+            }
+        }
+    };
+    let abort_after: Option<usize> = std::env::var(ABORT_ENV).ok().and_then(|v| v.parse().ok());
+    let chunk_written = |n: usize| {
+        if abort_after == Some(n) {
+            eprintln!("cushion sweep: {ABORT_ENV}={n}: stopping abruptly (test hook)");
+            std::process::exit(99);
+        }
+    };
+    let hooks = Hooks {
+        progress: Some(&progress),
+        cancel: None,
+        chunk_written: Some(&chunk_written),
+    };
+    let result = run_sweep(sweep, &opts, &hooks);
+    if let Some(pb) = &bar {
+        pb.finish_and_clear();
+    }
+    let o = result?;
+    for w in &o.warnings {
+        eprintln!("cushion sweep: warning: {w}");
+    }
+    if std::env::var_os(TIMING_ENV).is_some() {
+        for (what, seconds) in &o.phases {
+            eprintln!("cushion sweep: {what}: {seconds:.3} s");
+        }
+    }
+    if !args.quiet {
+        println!(
+            "{}: {} runs ({} computed now, {} not ok) in {:.2} s",
+            o.out_dir.display(),
+            o.runs_total,
+            o.runs_done_now,
+            o.runs_failed,
+            o.wall_seconds
+        );
+    }
+    Ok(())
+}
+
+fn progress_bar() -> indicatif::ProgressBar {
+    let pb = indicatif::ProgressBar::new(0);
+    pb.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {rate}  ETA {eta}",
+        )
+        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+        .with_key(
+            "rate",
+            |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
+                let _ = write!(w, "{:.0} runs/s", s.per_sec());
+            },
+        ),
+    );
+    pb
 }

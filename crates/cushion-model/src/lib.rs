@@ -109,7 +109,7 @@ pub mod simulate;
 pub mod summary;
 pub mod trajectory;
 
-pub use config::{ConfigError, Module, Scene};
+pub use config::{ConfigError, KeyInfo, Module, Scene};
 pub use simulate::{simulate, simulate_with_ledger, EnergyLedger, RunOptions, RunResult};
 pub use summary::{Cell, RunStatus, SolverStats, Summary};
 pub use trajectory::{EventLogEntry, Trajectory, TrajectoryPoint};

@@ -37,6 +37,29 @@ pub struct RunOptions {
     pub sample_interval: Option<f64>,
 }
 
+impl RunOptions {
+    /// A recorded run as users ask for one (`cushion simulate --csv`, Python's `simulate`):
+    /// samples every `sample_interval` seconds, by default `t_end / 2000`; `0` records the
+    /// solver's steps and events only. A negative or non-finite interval is refused with what
+    /// is allowed (the caller names the interval as its user typed it).
+    pub fn recording(scene: &Scene, sample_interval: Option<f64>) -> Result<RunOptions, String> {
+        let sample_interval = match sample_interval {
+            Some(dt) if !dt.is_finite() || dt < 0.0 => {
+                return Err(
+                    "expected a finite number of seconds >= 0 (0: steps and events only)".into(),
+                )
+            }
+            Some(dt) if dt == 0.0 => None,
+            Some(dt) => Some(dt),
+            None => Some(scene.t_end / 2000.0).filter(|dt| *dt > 0.0),
+        };
+        Ok(RunOptions {
+            trajectory: true,
+            sample_interval,
+        })
+    }
+}
+
 /// What one run yields.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RunResult {

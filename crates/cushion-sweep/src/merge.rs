@@ -6,7 +6,7 @@
 //! (same digest of sweep file and base scene), of the same `N`, each shard `1..=N` exactly once,
 //! no run twice, and every run of the sweep present.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::BTreeMap;
 use std::fs;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -17,7 +17,8 @@ use arrow_schema::SchemaRef;
 
 use crate::atomic::{write_atomic, AtomicFile};
 use crate::out_lock::OutputLock;
-use crate::runner::{io_err, read_parquet, SweepError};
+use crate::error::{io_err, SweepError};
+use crate::parquet_io::{count_failed_batch, read_parquet};
 use crate::summary_table::{csv_text, parquet_properties, write_csv_rows};
 
 /// What `cushion merge` was asked.
@@ -34,46 +35,8 @@ pub struct MergeOutcome {
     pub out_dir: PathBuf,
     pub runs: u64,
     pub runs_failed: usize,
-}
-
-/// Maps channels of copied MCAP messages onto a writer's channels (by topic).
-#[derive(Default)]
-pub struct ChannelMap {
-    ids: HashMap<String, u16>,
-}
-
-impl ChannelMap {
-    /// Copy one message into `w`, adding its schema and channel on first sight.
-    pub fn copy<W: Write + std::io::Seek>(
-        &mut self,
-        w: &mut mcap::Writer<W>,
-        m: &mcap::Message,
-    ) -> mcap::McapResult<()> {
-        let id = match self.ids.get(&m.channel.topic) {
-            Some(id) => *id,
-            None => {
-                let schema_id = match &m.channel.schema {
-                    Some(s) => w.add_schema(&s.name, &s.encoding, &s.data)?,
-                    None => 0,
-                };
-                let id = w.add_channel(
-                    schema_id,
-                    &m.channel.topic,
-                    &m.channel.message_encoding,
-                    &m.channel.metadata,
-                )?;
-                self.ids.insert(m.channel.topic.clone(), id);
-                id
-            }
-        };
-        let header = mcap::records::MessageHeader {
-            channel_id: id,
-            sequence: m.sequence,
-            log_time: m.log_time,
-            publish_time: m.publish_time,
-        };
-        w.write_to_known_channel(&header, &m.data)
-    }
+    /// Things the caller should tell the user; the merge itself succeeded.
+    pub warnings: Vec<String>,
 }
 
 fn cfg(msg: String) -> SweepError {
@@ -163,7 +126,8 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         }
     }
     // One sweep or merge at a time in this folder, until this function returns.
-    let _lock = OutputLock::take_for("cushion merge", &out_dir)?;
+    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    let mut warnings: Vec<String> = lock.warning(&out_dir).into_iter().collect();
 
     // Summaries: a k-way merge by run number, streaming.
     let mut readers = Vec::new();
@@ -255,7 +219,7 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
         let refs: Vec<&RecordBatch> = slots.iter().collect();
         let out = arrow_select::interleave::interleave_record_batch(&refs, picks)
             .map_err(|e| io_err("merge", e))?;
-        *failed += crate::runner::count_failed_batch(&out);
+        *failed += count_failed_batch(&out);
         write_csv_rows(csv.writer(), &out).map_err(|e| io_err(csv_path.display(), e))?;
         writer
             .write(&out)
@@ -385,12 +349,13 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     )
     .map_err(|e| io_err(out_dir.display(), e))?;
     if let Err(e) = crate::report::write_report(&out_dir) {
-        eprintln!("cushion merge: warning: report charts not written: {e}");
+        warnings.push(format!("report charts not written: {e}"));
     }
     Ok(MergeOutcome {
         out_dir,
         runs: count,
         runs_failed: failed,
+        warnings,
     })
 }
 
@@ -427,7 +392,7 @@ fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
         let mut w = crate::trajectory_mcap::write_options()
             .create(f.writer())
             .map_err(|e| io_err(path.display(), e))?;
-        let mut channels = ChannelMap::default();
+        let mut channels = crate::mcap_copy::ChannelMap::default();
         loop {
             let mut best: Option<(usize, u64)> = None;
             for (i, s) in streams.iter_mut().enumerate() {

@@ -16,7 +16,7 @@ use std::fs::{self, File, OpenOptions, TryLockError};
 use std::io;
 use std::path::Path;
 
-use crate::runner::{io_err, SweepError};
+use crate::error::{io_err, SweepError};
 
 /// Name of the lock file inside the output folder.
 pub const LOCK_FILE: &str = ".sweep.lock";
@@ -67,23 +67,11 @@ impl OutputLock {
         }
     }
 
-    /// Take the lock for `command` (`cushion sweep`, `cushion merge`) as the command reports
-    /// it: refused or failed as a [`SweepError`] ([`LockError::into_sweep_error`]); on a file
-    /// system that cannot lock, the [`OutputLock::warning`] on standard error, and on.
-    pub fn take_for(command: &str, out_dir: &Path) -> Result<OutputLock, SweepError> {
-        let lock = Self::take(out_dir).map_err(|e| e.into_sweep_error(out_dir))?;
-        if let Some(w) = lock.warning(command, out_dir) {
-            eprintln!("{w}");
-        }
-        Ok(lock)
-    }
-
-    /// The warning for `command` (`cushion sweep`, `cushion merge`) when the folder could not
-    /// be locked.
-    pub fn warning(&self, command: &str, out_dir: &Path) -> Option<String> {
+    /// The warning for the caller to pass on when the folder could not be locked.
+    pub fn warning(&self, out_dir: &Path) -> Option<String> {
         self.not_locked.as_ref().map(|e| {
             format!(
-                "{command}: warning: {}: cannot lock {LOCK_FILE} ({e}); nothing keeps a second sweep out of this folder",
+                "{}: cannot lock {LOCK_FILE} ({e}); nothing keeps a second sweep out of this folder",
                 out_dir.display()
             )
         })
@@ -91,12 +79,12 @@ impl OutputLock {
 }
 
 impl LockError {
-    /// What the command reports: a usage error (exit status 2) naming the folder when another
-    /// process holds the lock, an I/O error (exit status 1) otherwise.
+    /// [`SweepError::Busy`] naming the folder when another process holds the lock,
+    /// [`SweepError::Io`] otherwise.
     pub fn into_sweep_error(self, out_dir: &Path) -> SweepError {
         match self {
-            LockError::Held => SweepError::Config(format!(
-                "{}: another cushion sweep or merge is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another --out",
+            LockError::Held => SweepError::Busy(format!(
+                "{}: another cushion sweep or merge is writing into this folder now (it holds {LOCK_FILE}): wait for it to end, or choose another output folder",
                 out_dir.display()
             )),
             LockError::Io(e) => io_err(out_dir.display(), e),
@@ -129,15 +117,12 @@ mod tests {
         let file = File::create(out.join(LOCK_FILE)).unwrap();
         let unsupported = io::Error::from(io::ErrorKind::Unsupported);
         let lock = OutputLock::from_attempt(file, Err(TryLockError::Error(unsupported))).unwrap();
-        let w = lock.warning("cushion sweep", out).unwrap();
-        assert!(
-            w.starts_with("cushion sweep: warning: ") && w.contains("cannot lock"),
-            "{w}"
-        );
+        let w = lock.warning(out).unwrap();
+        assert!(w.contains("cannot lock"), "{w}");
         // a lock taken for real warns of nothing
         drop(lock);
         assert_eq!(
-            OutputLock::take(out).unwrap().warning("cushion sweep", out),
+            OutputLock::take(out).unwrap().warning(out),
             None
         );
     }

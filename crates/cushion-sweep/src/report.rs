@@ -18,7 +18,7 @@ use std::path::Path;
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 use plotters::prelude::*;
 
-use crate::runner::read_parquet;
+use crate::parquet_io::read_parquet;
 
 pub const SPEED_FORCE_SVG: &str = "report-speed-force.svg";
 pub const HEATMAP_SVG: &str = "report-heatmap.svg";

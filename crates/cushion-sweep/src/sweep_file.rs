@@ -2,7 +2,8 @@
 //!
 //! ```toml
 //! name = "design-space"                   # optional; default: the file's stem
-//! scene = "scenes/paper-hydraulic.toml"   # optional base scene, relative to this file
+//! scene = "scenes/paper-hydraulic.toml"   # optional base scene, relative to this file, or a
+//!                                         # table of scene keys (`scene = { module = "bistable" }`)
 //! [set]                                   # optional overrides of the base scene (SPEC section 7 keys)
 //! "solver.rtol" = 1e-6
 //! [sampling]
@@ -459,7 +460,16 @@ impl SweepFile {
                 let scene_path = dir.join(s);
                 Scene::from_file(&scene_path).map_err(|e| format!("`scene` = {s:?}: {e}"))?
             }
-            Some(other) => return Err(format!("`scene` must be a path string, got {other}")),
+            Some(Value::Table(t)) => {
+                let mut scene = Scene::default();
+                scene.apply_table(t).map_err(|e| format!("`scene`: {e}"))?;
+                scene
+            }
+            Some(other) => {
+                return Err(format!(
+                    "`scene` must be a path string or a table of scene keys, got {other}"
+                ))
+            }
         };
 
         let mut set = Vec::new();
