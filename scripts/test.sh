@@ -1,7 +1,24 @@
 #!/usr/bin/env bash
-# Every test of the project, on a fresh machine: fetches the Rust crates it needs and runs the
-# unit, integration and end-to-end tests of the whole workspace (the `cushion` command is run
-# as a user runs it). Benchmarks are not run here (see README).
+# Every test of the project, on a fresh machine:
+#   1. the Rust tests of the whole workspace (cargo fetches the crates it needs): unit,
+#      integration and end-to-end tests (the `cushion` command run as a user runs it);
+#   2. the Python package: a virtual environment in .venv/, the wheel built by maturin and
+#      installed with its test dependencies (numpy, pandas, pyarrow, matplotlib,
+#      dask[distributed], pytest, mcap, nbformat), then pytest on tests/python/.
+# Benchmarks are not run here (see docs/performance.md).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
 cargo test --workspace --locked
+
+python=${PYTHON:-python3}
+[ -x .venv/bin/python ] || "$python" -m venv .venv
+.venv/bin/python -m pip install -q --upgrade pip
+.venv/bin/python -m pip install -q "maturin>=1.5,<2"
+rm -rf target/wheels
+.venv/bin/maturin build --release --locked --out target/wheels
+wheel=$(ls target/wheels/cushion-*.whl)
+.venv/bin/python -m pip install -q --force-reinstall "${wheel}[test]"
+
+# The Python tests compare the package with the command built by `cargo test` above.
+CUSHION_BIN="$PWD/target/debug/cushion" .venv/bin/python -m pytest tests/python -q

@@ -1,0 +1,38 @@
+//! `cushion._cushion`: the compiled core of the Python package `cushion`.
+//!
+//! Thin by design: Python values are converted to the libraries' types first (scenes, sweep
+//! files), the work runs in `cushion-model` and `cushion-sweep` with the GIL released, and the
+//! results come back as numpy arrays (handed over without a copy), plain dicts, and Arrow IPC
+//! streams that pyarrow turns into pandas frames. The pure-Python layer (`python/cushion/`)
+//! builds the user-facing objects (`Run`, DataFrames, plots, Dask).
+
+mod convert;
+mod errors;
+mod mcap_read;
+mod scene;
+mod simulate;
+mod sweep;
+
+use pyo3::prelude::*;
+
+#[pymodule]
+fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    // Panics are caught and raised as RuntimeError with their message (errors.rs); the default
+    // hook would also print them, with a backtrace, on the user's standard error. This hook
+    // belongs to this extension's own copy of the Rust runtime only.
+    std::panic::set_hook(Box::new(|_| {}));
+    m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::keys, m)?)?;
+    m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
+    m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::resolve_sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::sweep_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(mcap_read::read_mcap, m)?)?;
+    m.add_function(wrap_pyfunction!(mcap_read::recorded_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(errors::_panic_guard_check, m)?)?;
+    Ok(())
+}

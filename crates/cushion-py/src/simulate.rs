@@ -1,0 +1,102 @@
+//! One run from Python: the scene built and checked, the run with the GIL released, and its
+//! summary, trajectory columns and event log handed back.
+
+use cushion_model::{simulate as run_scene, EventLogEntry, RunOptions, RunStatus, Scene, Trajectory, TrajectoryPoint};
+use numpy::PyArray1;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyString};
+
+use crate::convert::from_json;
+use crate::errors::{config_error, guarded};
+use crate::scene::{apply_set, scene_from};
+
+/// Run one scene. Returns `(summary, trajectory, events)`: the summary as the dict of
+/// `cushion simulate --json`, the trajectory as `{column: ndarray}` (or `None` when not
+/// recorded), the event log as `{"t": ndarray, "event": [str], column: ndarray, ...}`.
+#[pyfunction]
+#[pyo3(signature = (scene=None, set=None, rtol=None, atol=None, method=None, trajectory=true, sample_interval=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn simulate<'py>(
+    py: Python<'py>,
+    scene: Option<&Bound<'py, PyAny>>,
+    set: Option<&Bound<'py, PyDict>>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    method: Option<&str>,
+    trajectory: bool,
+    sample_interval: Option<f64>,
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+    let mut s = scene_from(scene)?;
+    apply_set(&mut s, set)?;
+    set_solver(&mut s, rtol, atol, method)?;
+    s.validate().map_err(config_error)?;
+    let recording = RunOptions::recording(&s, sample_interval)
+        .map_err(|e| config_error(format!("sample_interval = {}: {e}", sample_interval.unwrap_or_default())))?;
+    let opts = RunOptions {
+        trajectory,
+        ..recording
+    };
+    let result = py.detach(|| guarded("simulate", || run_scene(&s, &opts)))?;
+    if result.summary.status == RunStatus::Invalid {
+        // The scene passed the checks but the model found it unusable: still bad input.
+        return Err(config_error(&result.summary.message));
+    }
+    let summary = serde_json::to_value(&result.summary)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("summary: {e}")))?;
+    let traj = match &result.trajectory {
+        Some(t) => columns(py, t)?.into_any(),
+        None => py.None().into_bound(py),
+    };
+    Ok((from_json(py, &summary)?, traj, events(py, &result.events)?))
+}
+
+fn set_solver(s: &mut Scene, rtol: Option<f64>, atol: Option<f64>, method: Option<&str>) -> PyResult<()> {
+    if let Some(v) = rtol {
+        s.set("solver.rtol", &toml::Value::Float(v)).map_err(config_error)?;
+    }
+    if let Some(v) = atol {
+        s.set("solver.atol", &toml::Value::Float(v)).map_err(config_error)?;
+    }
+    if let Some(m) = method {
+        s.set("solver.method", &toml::Value::String(m.into())).map_err(config_error)?;
+    }
+    Ok(())
+}
+
+/// The trajectory as one numpy array per column (`t, x_r, ..., F_r`), handed over without a copy.
+pub fn columns<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDict>> {
+    point_columns(py, t.points.iter().copied(), t.points.len())
+}
+
+fn point_columns<'py>(
+    py: Python<'py>,
+    points: impl Iterator<Item = TrajectoryPoint>,
+    n: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mut cols: Vec<Vec<f64>> = (0..TrajectoryPoint::COLUMNS.len())
+        .map(|_| Vec::with_capacity(n))
+        .collect();
+    for p in points {
+        for (c, v) in cols.iter_mut().zip(p.values()) {
+            c.push(v);
+        }
+    }
+    let d = PyDict::new(py);
+    for (name, c) in TrajectoryPoint::COLUMNS.iter().zip(cols) {
+        d.set_item(*name, PyArray1::from_vec(py, c))?;
+    }
+    Ok(d)
+}
+
+/// The event log: `t` and the state columns as arrays, `event` as a list of names.
+pub fn events<'py>(py: Python<'py>, events: &[EventLogEntry]) -> PyResult<Bound<'py, PyDict>> {
+    let d = point_columns(py, events.iter().map(|e| e.point), events.len())?;
+    // the event's own time (the state's `t` is the same instant)
+    d.set_item("t", PyArray1::from_vec(py, events.iter().map(|e| e.t).collect()))?;
+    let names = PyList::empty(py);
+    for e in events {
+        names.append(PyString::new(py, &e.name))?;
+    }
+    d.set_item("event", names)?;
+    Ok(d)
+}

@@ -1,0 +1,33 @@
+"""cushion: collisions of a robot's end-effector with small objects, and the compliance modules
+that soften them (a hydraulic cylinder with an orifice and a gas spring, a snap-through bistable
+spring, or none).
+
+The engine is compiled Rust; this package hands its results over as numpy arrays and pandas
+frames. SI units throughout (m, s, kg, N, Pa). Scene keys are ``"section.key"`` names, the same
+as in scene files, ``cushion simulate --set`` and sweep axes; :func:`keys` lists them.
+
+>>> import cushion
+>>> run = cushion.simulate(set={"module": "bistable", "robot.dead_time": 0.01})
+>>> run.summary["object_final_velocity"]          # m/s
+>>> frame = cushion.sweep("sweeps/paper.toml")    # one row per run
+
+Bad input raises :class:`ConfigError` (a :class:`ValueError`) naming the key, the value and
+what is allowed. A run that fails numerically is not an exception: its ``status`` says so.
+"""
+
+from ._cushion import ConfigError, __version__
+from ._run import Run, read_mcap, simulate
+from ._scene import defaults, keys, load_scene
+from ._sweep import sweep
+
+__all__ = [
+    "ConfigError",
+    "Run",
+    "__version__",
+    "defaults",
+    "keys",
+    "load_scene",
+    "read_mcap",
+    "simulate",
+    "sweep",
+]

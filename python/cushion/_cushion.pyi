@@ -1,0 +1,47 @@
+# Type stubs of the compiled module cushion._cushion (crates/cushion-py). Users call the
+# wrappers in cushion/__init__.py; these are the raw functions under them.
+from typing import Any, Callable
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class ConfigError(ValueError):
+    """Bad input: the message names the key, the value and what is allowed."""
+
+Columns = dict[str, npt.NDArray[np.float64]]
+# "t" and the state columns as arrays, "event" as a list of names
+Events = dict[str, Any]
+
+def defaults(module: str = "hydraulic") -> dict[str, Any]: ...
+def keys() -> list[tuple[str, Any, str, str]]: ...
+def load_scene(path: str) -> dict[str, Any]: ...
+def simulate(
+    scene: str | dict[str, Any] | None = None,
+    set: dict[str, Any] | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
+    method: str | None = None,
+    trajectory: bool = True,
+    sample_interval: float | None = None,
+) -> tuple[dict[str, Any], Columns | None, Events]: ...
+def sweep(
+    config: str | dict[str, Any],
+    threads: int | None = None,
+    out: str | None = None,
+    resume: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+    git_commit: str | None = None,
+) -> bytes:
+    """The summary rows as an Arrow IPC stream."""
+
+def resolve_sweep(config: str | dict[str, Any]) -> tuple[str, int]:
+    """The sweep as self-contained TOML text, and its run count."""
+
+def sweep_runs(text: str, start: int, stop: int, threads: int | None = None) -> bytes:
+    """Runs start..stop of a resolved sweep, as an Arrow IPC stream."""
+
+def read_mcap(path: str, run: int | None = None) -> tuple[Columns, Events]: ...
+def recorded_runs(path: str) -> list[int]: ...
+def _panic_guard_check() -> None: ...

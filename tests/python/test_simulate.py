@@ -1,0 +1,154 @@
+"""`cushion.simulate` against the command line: the same scene gives the same summary to the
+bit (`--json`), the same trajectory samples (`--csv`) and the same events (`--mcap`)."""
+
+from __future__ import annotations
+
+import csv
+import math
+
+import numpy as np
+import pytest
+
+import cushion
+from conftest import ROOT, SCENES, same
+
+
+@pytest.mark.parametrize("scene", SCENES, ids=lambda p: p.stem)
+def test_summary_equals_the_command_line_json_to_the_bit(scene, cli_json):
+    run = cushion.simulate(scene)
+    assert same(run.summary, cli_json(scene))
+    assert run.status == run.summary["status"] == "ok"
+    assert run.stats == run.summary["stats"]
+
+
+def test_overrides_shorthands_and_dict_scenes_equal_the_command_line(cli_json):
+    want = cli_json(
+        ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml",
+        "--set", "module=bistable", "--set", "robot.dead_time=0.01",
+        "--set", "solver.rtol=1e-8", "--set", "solver.atol=1e-11",
+    )
+    by_set = cushion.simulate(
+        ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml",
+        set={"module": "bistable", "robot.dead_time": 0.01, "solver.rtol": 1e-8, "solver.atol": 1e-11},
+    )
+    by_keywords = cushion.simulate(
+        str(ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"),
+        set={"module": "bistable", "robot.dead_time": 0.01},
+        rtol=1e-8,
+        atol=1e-11,
+        method="dp5",
+    )
+    nested = cushion.load_scene(ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml")
+    nested.update({"module": "bistable", "robot.dead_time": 0.01, "solver.rtol": 1e-8, "solver.atol": 1e-11})
+    by_dict = cushion.simulate(nested)
+    for r in (by_set, by_keywords, by_dict):
+        assert same(r.summary, want)
+    # a dict of sections, as a scene file's tables
+    sections = {"module": "bistable", "robot": {"dead_time": 0.01}, "solver": {"rtol": 1e-8, "atol": 1e-11}}
+    assert same(
+        cushion.simulate(sections).summary,
+        cli_json(
+            "--set", "module=bistable", "--set", "robot.dead_time=0.01",
+            "--set", "solver.rtol=1e-8", "--set", "solver.atol=1e-11",
+        ),
+    )
+
+
+def test_numpy_scalars_are_taken_as_numbers(cli_json):
+    run = cushion.simulate(set={"robot.dead_time": np.float64(0.01), "solver.max_steps": np.int64(100000)})
+    assert same(run.summary, cli_json("--set", "robot.dead_time=0.01", "--set", "solver.max_steps=100000"))
+
+
+def _csv_columns(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    return {h: np.array([float(r[i]) if r[i] != "" else math.nan for r in body]) for i, h in enumerate(header)}
+
+
+@pytest.mark.parametrize("scene", ["paper-hydraulic-dt70", "paper-rigid"])
+def test_trajectory_arrays_are_the_csv_samples(scene, cli, tmp_path):
+    path = ROOT / "sweeps/scenes" / f"{scene}.toml"
+    cli("simulate", path, "--csv", tmp_path / "t.csv")
+    want = _csv_columns(tmp_path / "t.csv")
+    run = cushion.simulate(path)
+    frame = run.to_pandas()
+    assert list(frame.columns) == list(want)
+    for name, values in want.items():
+        got = getattr(run, name)
+        assert got.dtype == np.float64 and got.shape == values.shape
+        assert np.array_equal(got, values, equal_nan=True), name
+        assert np.array_equal(frame[name].to_numpy(), values, equal_nan=True)
+    if scene == "paper-rigid":
+        assert np.isnan(run.p1).all()  # no gas in a rigid module
+
+
+def test_arrays_are_handed_over_without_a_copy():
+    run = cushion.simulate()
+    # numpy arrays built on the Rust vector: numpy does not own the data, and the base is the
+    # Rust container, not another array that was copied from
+    assert not run.t.flags.owndata
+    assert not isinstance(run.t.base, np.ndarray)
+
+
+def test_sample_interval_and_no_trajectory(cli, tmp_path):
+    cli("simulate", "--sample-interval", "0", "--csv", tmp_path / "steps.csv")
+    run = cushion.simulate(sample_interval=0)
+    assert np.array_equal(run.t, _csv_columns(tmp_path / "steps.csv")["t"])
+    fast = cushion.simulate(trajectory=False)
+    assert fast.t.size == 0 and fast.to_pandas().empty
+    assert same(fast.summary, run.summary)
+
+
+def test_event_log(cli_json):
+    run = cushion.simulate(ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml")
+    ev = run.events
+    assert list(ev.columns[:3]) == ["t", "event", "direction"]
+    assert ev["t"].is_monotonic_increasing
+    s = run.summary
+    sensor = ev[ev.event == "sensor"]
+    brake = ev[ev.event == "brake"]
+    assert len(sensor) == 1 and sensor.t.iloc[0] == s["t_detect"]
+    assert len(brake) == 1 and brake.t.iloc[0] == s["t_brake"]
+    assert brake.t.iloc[0] == pytest.approx(s["t_detect"] + 0.070, rel=1e-12)
+    begins = ev[ev.event == "object_contact_begin"]
+    assert (begins.direction == "begin").all() and len(begins) == s["object_impacts"]
+    assert (ev[ev.event == "sensor"].direction == "").all()
+    # the state at the sensor event: the stroke is the sensor threshold (1.5 mm)
+    assert sensor.s.iloc[0] == pytest.approx(1.5e-3, rel=1e-9)
+
+
+def test_a_numerical_failure_is_a_status_not_an_exception(cli_json):
+    run = cushion.simulate(set={"solver.max_steps": 10})
+    assert run.status == "max_steps" and run.summary["message"]
+    assert same(run.summary, cli_json("--set", "solver.max_steps=10"))
+
+
+def test_defaults_keys_and_load_scene():
+    keys = cushion.keys()
+    assert list(keys.columns) == ["key", "default", "unit", "description"]
+    for module in ("hydraulic", "bistable", "rigid"):
+        d = cushion.defaults(module)
+        assert d["module"] == module
+        assert list(d) == list(keys.key)
+    d = cushion.defaults()
+    # SPEC section 2's Table 1 values and section 7's defaults
+    assert d["robot.dead_time"] == 0.070 and d["hydraulic.gas_pressure"] == 1000.0
+    assert d["object.mass"] == 0.246 and d["solver.method"] == "dp5"
+    assert dict(zip(keys.key, keys.default)) == d
+    assert keys.set_index("key").loc["robot.dead_time", "unit"] == "s"
+    assert keys.set_index("key").loc["hydraulic.gas_pressure", "unit"] == "Pa"
+    scene = cushion.load_scene(ROOT / "sweeps/scenes/paper-bistable-dt10.toml")
+    assert scene["module"] == "bistable" and scene["robot.dead_time"] == 0.010
+    # a scene dict round-trips through simulate
+    assert same(cushion.simulate(scene).summary, cushion.simulate(ROOT / "sweeps/scenes/paper-bistable-dt10.toml").summary)
+
+
+def test_two_threads_simulate_at_once():
+    from concurrent.futures import ThreadPoolExecutor
+
+    scenes = [{"robot.dead_time": dt} for dt in np.linspace(0.0, 0.1, 12)]
+    alone = [cushion.simulate(set=s, trajectory=False).summary for s in scenes]
+    with ThreadPoolExecutor(2) as pool:
+        together = list(pool.map(lambda s: cushion.simulate(set=s, trajectory=False).summary, scenes))
+    assert all(same(a, b) for a, b in zip(alone, together))
