@@ -10,9 +10,10 @@ __version__: str
 class ConfigError(ValueError):
     """Bad input: the message names the key, the value and what is allowed."""
 
-Columns = dict[str, npt.NDArray[np.float64]]
-# "t" and the state columns as arrays, "event" as a list of names
-Events = dict[str, Any]
+# the trajectory: an (11, n) array, one row per column t, x_r, v_r, x_t, v_t, x_p, v_p, s, p1, F_c, F_r
+Columns = npt.NDArray[np.float64]
+# the event log: times, names, and the state at each event as an (n, 11) array
+Events = tuple[npt.NDArray[np.float64], list[str], npt.NDArray[np.float64]]
 
 def defaults(module: str = "hydraulic") -> dict[str, Any]: ...
 def keys() -> list[tuple[str, Any, str, str]]: ...

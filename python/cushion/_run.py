@@ -13,6 +13,7 @@ from . import _cushion
 #: Trajectory columns, in the order of ``--csv`` (SI units: s, m, m/s, Pa, N).
 COLUMNS = ("t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r")
 
+_INDEX = {c: i for i, c in enumerate(COLUMNS)}
 _EMPTY = np.empty(0)
 
 
@@ -37,16 +38,25 @@ class Run:
         ``""``), and the state at the event (the trajectory's columns).
     """
 
-    __slots__ = ("summary", "_columns", "_events", "_events_frame")
+    __slots__ = ("summary", "_data", "_events", "_events_frame")
 
     def __init__(
         self,
         summary: dict[str, Any] | None,
-        columns: Mapping[str, np.ndarray] | None,
-        events: Mapping[str, Any],
+        data: np.ndarray | Mapping[str, np.ndarray] | None,
+        events: tuple[np.ndarray, list[str], np.ndarray] | Mapping[str, Any],
     ) -> None:
+        """A run from its parts: the summary dict (or ``None``), the trajectory (an
+        ``(11, n)`` array whose rows are :data:`COLUMNS`, or a dict of the columns, or
+        ``None``), and the event log (``(times, names, states)`` with ``states`` an
+        ``(n, 11)`` array, or a dict with ``t``, ``event`` and the state columns)."""
         self.summary = summary
-        self._columns = columns
+        if isinstance(data, Mapping):
+            data = np.vstack([np.asarray(data[c], dtype=float) for c in COLUMNS])
+        self._data = data
+        if isinstance(events, Mapping):
+            states = np.column_stack([np.asarray(events[c], dtype=float) for c in COLUMNS]).reshape(-1, len(COLUMNS))
+            events = (np.asarray(events["t"], dtype=float), list(events["event"]), states)
         self._events = events
         self._events_frame: pd.DataFrame | None = None
 
@@ -61,9 +71,10 @@ class Run:
         return None if self.summary is None else self.summary["stats"]
 
     def __getattr__(self, name: str) -> np.ndarray:
-        if name in COLUMNS:
-            columns = object.__getattribute__(self, "_columns")
-            return _EMPTY if columns is None else columns[name]
+        i = _INDEX.get(name)
+        if i is not None:
+            data = object.__getattribute__(self, "_data")
+            return _EMPTY if data is None else data[i]
         raise AttributeError(f"'Run' object has no attribute {name!r}")
 
     def __dir__(self) -> list[str]:
@@ -72,11 +83,10 @@ class Run:
     @property
     def events(self) -> pd.DataFrame:
         if self._events_frame is None:
-            ev = self._events
-            names = list(ev["event"])
-            frame = pd.DataFrame({"t": ev["t"], "event": names, "direction": [_direction(n) for n in names]})
-            for c in COLUMNS[1:]:
-                frame[c] = ev[c]
+            t, names, states = self._events
+            frame = pd.DataFrame({"t": t, "event": names, "direction": [_direction(n) for n in names]})
+            for i, c in enumerate(COLUMNS[1:], start=1):
+                frame[c] = states[:, i]
             self._events_frame = frame
         return self._events_frame
 
@@ -95,7 +105,7 @@ class Run:
     def __repr__(self) -> str:
         n = len(self.t)
         if self.summary is None:
-            return f"<cushion.Run recorded, {n} points, {len(self._events['t'])} events>"
+            return f"<cushion.Run recorded, {n} points, {len(self._events[0])} events>"
         s = self.summary
         return (
             f"<cushion.Run status={s['status']!r} peak_robot_force={s['peak_robot_force']:.4g} N "
@@ -158,7 +168,7 @@ def simulate(
         Its ``status`` is ``"ok"`` or says how the run failed; a numerical failure is not an
         exception. Bad input raises :class:`cushion.ConfigError` naming the key.
     """
-    summary, columns, events = _cushion.simulate(
+    summary, data, events = _cushion.simulate(
         _scene_arg(scene),
         None if set is None else dict(set),
         rtol,
@@ -167,7 +177,7 @@ def simulate(
         trajectory,
         sample_interval,
     )
-    return Run(summary, columns, events)
+    return Run(summary, data, events)
 
 
 def read_mcap(path: str | os.PathLike[str], run: int | None = None) -> Run:
@@ -175,5 +185,5 @@ def read_mcap(path: str | os.PathLike[str], run: int | None = None) -> Run:
     or a sweep's ``trajectories.mcap`` (``run`` = the run number; ``None`` when it holds one
     run). The arrays and events equal those :func:`simulate` returned for that run; the
     summary is ``None`` (MCAP records no summary)."""
-    columns, events = _cushion.read_mcap(os.fspath(path), run)
-    return Run(None, columns, events)
+    data, events = _cushion.read_mcap(os.fspath(path), run)
+    return Run(None, data, events)

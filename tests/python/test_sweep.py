@@ -112,31 +112,38 @@ def _long_sweep(samples: int) -> dict:
 
 def test_two_threads_sweep_in_parallel():
     """The GIL is released while the engine runs: two Python threads, each running a
-    one-thread sweep, take clearly less than twice one of them."""
-    config = _long_sweep(1024)
+    one-thread sweep, take clearly less than twice one of them. Wall time depends on what
+    else the machine runs, so the comparison is made up to three times."""
+    config = _long_sweep(4096)
 
     def one():
         return cushion.sweep(config, threads=1, progress=False)
 
-    one()  # warm caches
-    t0 = time.perf_counter()
-    alone = one()
-    single = time.perf_counter() - t0
-    results = [None, None]
+    alone = one()  # also warms the caches
+    tries = []
+    for _ in range(3):
+        t0 = time.perf_counter()
+        one()
+        single = time.perf_counter() - t0
+        results = [None, None]
 
-    def worker(i):
-        results[i] = one()
+        def worker(i):
+            results[i] = one()
 
-    threads = [threading.Thread(target=worker, args=(i,)) for i in range(2)]
-    t0 = time.perf_counter()
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    both = time.perf_counter() - t0
-    assert both < 1.6 * single, f"two sweeps took {both:.2f} s, one alone {single:.2f} s"
-    for r in results:
-        pd.testing.assert_frame_equal(r, alone)
+        threads = [threading.Thread(target=worker, args=(i,)) for i in range(2)]
+        t0 = time.perf_counter()
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        both = time.perf_counter() - t0
+        for r in results:
+            pd.testing.assert_frame_equal(r, alone)
+        tries.append((both, single))
+        if both < 1.6 * single:
+            break
+    else:
+        pytest.fail(f"two sweeps at once against one alone, s: {tries}")
 
 
 CHILD = r"""

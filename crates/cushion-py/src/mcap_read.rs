@@ -4,10 +4,9 @@
 use cushion_sweep::trajectory_mcap::{read_run, recorded_runs as runs_in, ReadError};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
 
 use crate::errors::config_error;
-use crate::simulate::{columns, events};
+use crate::simulate::{columns, events, Events};
 
 fn read(path: &str) -> PyResult<Vec<u8>> {
     std::fs::read(path).map_err(|e| PyOSError::new_err(format!("{path}: {e}")))
@@ -27,7 +26,7 @@ pub fn read_mcap<'py>(
     py: Python<'py>,
     path: &str,
     run: Option<u64>,
-) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+) -> PyResult<(Bound<'py, PyAny>, Events<'py>)> {
     let bytes = read(path)?;
     let (traj, evs) = py
         .detach(|| read_run(&bytes, run))

@@ -2,7 +2,7 @@
 //! summary, trajectory columns and event log handed back.
 
 use cushion_model::{simulate as run_scene, EventLogEntry, RunOptions, RunStatus, Scene, Trajectory, TrajectoryPoint};
-use numpy::PyArray1;
+use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
 
@@ -11,8 +11,8 @@ use crate::errors::{config_error, guarded};
 use crate::scene::{apply_set, scene_from};
 
 /// Run one scene. Returns `(summary, trajectory, events)`: the summary as the dict of
-/// `cushion simulate --json`, the trajectory as `{column: ndarray}` (or `None` when not
-/// recorded), the event log as `{"t": ndarray, "event": [str], column: ndarray, ...}`.
+/// `cushion simulate --json`, the trajectory as [`columns`] (or `None` when not recorded), the
+/// event log as [`events`].
 #[pyfunction]
 #[pyo3(signature = (scene=None, set=None, rtol=None, atol=None, method=None, trajectory=true, sample_interval=None))]
 #[allow(clippy::too_many_arguments)]
@@ -25,7 +25,7 @@ pub fn simulate<'py>(
     method: Option<&str>,
     trajectory: bool,
     sample_interval: Option<f64>,
-) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Events<'py>)> {
     let mut s = scene_from(scene)?;
     apply_set(&mut s, set)?;
     set_solver(&mut s, rtol, atol, method)?;
@@ -63,40 +63,37 @@ fn set_solver(s: &mut Scene, rtol: Option<f64>, atol: Option<f64>, method: Optio
     Ok(())
 }
 
-/// The trajectory as one numpy array per column (`t, x_r, ..., F_r`), handed over without a copy.
-pub fn columns<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyDict>> {
-    point_columns(py, t.points.iter().copied(), t.points.len())
-}
+/// The event log as handed to Python: times, names, states.
+pub type Events<'py> = (Bound<'py, PyAny>, Bound<'py, PyList>, Bound<'py, PyAny>);
 
-fn point_columns<'py>(
-    py: Python<'py>,
-    points: impl Iterator<Item = TrajectoryPoint>,
-    n: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let mut cols: Vec<Vec<f64>> = (0..TrajectoryPoint::COLUMNS.len())
-        .map(|_| Vec::with_capacity(n))
-        .collect();
-    for p in points {
-        for (c, v) in cols.iter_mut().zip(p.values()) {
-            c.push(v);
+/// The trajectory as one `(11, n)` numpy array, a row per column of
+/// [`TrajectoryPoint::COLUMNS`] (`t, x_r, ..., F_r`), handed over without a copy: Python takes
+/// its rows as views.
+pub fn columns<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyAny>> {
+    let n = t.points.len();
+    let k = TrajectoryPoint::COLUMNS.len();
+    let mut data = vec![0.0; k * n];
+    for (j, p) in t.points.iter().enumerate() {
+        for (i, v) in p.values().into_iter().enumerate() {
+            data[i * n + j] = v;
         }
     }
-    let d = PyDict::new(py);
-    for (name, c) in TrajectoryPoint::COLUMNS.iter().zip(cols) {
-        d.set_item(*name, PyArray1::from_vec(py, c))?;
-    }
-    Ok(d)
+    Ok(PyArray1::from_vec(py, data).reshape([k, n])?.into_any())
 }
 
-/// The event log: `t` and the state columns as arrays, `event` as a list of names.
-pub fn events<'py>(py: Python<'py>, events: &[EventLogEntry]) -> PyResult<Bound<'py, PyDict>> {
-    let d = point_columns(py, events.iter().map(|e| e.point), events.len())?;
-    // the event's own time (the state's `t` is the same instant)
-    d.set_item("t", PyArray1::from_vec(py, events.iter().map(|e| e.t).collect()))?;
+/// The event log as `(t, names, states)`: the times, the names, and the state at each event as
+/// an `(n, 11)` array whose columns are those of the trajectory.
+pub fn events<'py>(
+    py: Python<'py>,
+    events: &[EventLogEntry],
+) -> PyResult<Events<'py>> {
+    let k = TrajectoryPoint::COLUMNS.len();
+    let t = PyArray1::from_vec(py, events.iter().map(|e| e.t).collect());
+    let states: Vec<f64> = events.iter().flat_map(|e| e.point.values()).collect();
+    let states = PyArray1::from_vec(py, states).reshape([events.len(), k])?;
     let names = PyList::empty(py);
     for e in events {
         names.append(PyString::new(py, &e.name))?;
     }
-    d.set_item("event", names)?;
-    Ok(d)
+    Ok((t.into_any(), names, states.into_any()))
 }
