@@ -1,6 +1,17 @@
-//! Event location: a bracketing root finder (Illinois regula falsi, safeguarded by bisection)
-//! on the dense output. Detection lives in `solve.rs`: signs are compared at the step's ends and
-//! at interior points of the dense output, so two crossings inside one step are both found.
+//! Events: detection, location and dispatch within one accepted step.
+//!
+//! Detection compares the signs of the event functions at the step's ends and at interior
+//! points of the dense output (`SolverOptions::event_subdivisions`), so two crossings inside one
+//! step are both found; a step that provably holds no crossing (the system's chord bounds,
+//! [`OdeSystem::event_chord_bounds`]) is not sampled inside. Location is a bracketing root
+//! finder (Illinois regula falsi, safeguarded by bisection) on the dense output ([`locate`]).
+//! Dispatch calls the system's handlers in time order, and at one instant in index order.
+
+use crate::dense::DenseOutput;
+use crate::options::SolverOptions;
+use crate::solution::{EventRecord, Stats};
+use crate::system::{Control, Direction, EventAction, OdeSystem, MAX_EVENTS};
+use crate::State;
 
 /// Find the crossing of `g` inside `[a, b]`, where `ga` is strictly on the old side and `gb` on
 /// the new side (or zero). Returns the time on the far side of the crossing: a point where `g`
@@ -103,5 +114,207 @@ mod tests {
         );
         assert!((t - 0.3).abs() < 1e-3, "{t}");
         assert!((t - 0.3f64).powi(9) >= 0.0);
+    }
+}
+
+/// Interior scan fractions computed in advance; more subdivisions than this (unusual) are
+/// divided on the fly.
+const MAX_PRECOMPUTED_FRACTIONS: usize = 64;
+
+/// The event functions' state across a run: their values at the current time, the scan
+/// points, and the log of every event handled.
+pub struct EventScan<const N: usize> {
+    n: usize,
+    /// `g_i` at the current time (the start of the next step).
+    g: [f64; MAX_EVENTS],
+    /// Interior points per step plus one.
+    segments: usize,
+    /// `k / segments` for the first interior points `k = 1, 2, ...`, divided once here rather
+    /// than every step (the same numbers).
+    scan_fractions: Vec<f64>,
+    /// Every event handled, in time order.
+    pub log: Vec<EventRecord<N>>,
+}
+
+impl<const N: usize> EventScan<N> {
+    pub fn new(n_events: usize, opts: &SolverOptions) -> Self {
+        let segments = opts.event_subdivisions.saturating_add(1);
+        let scan_fractions = if n_events == 0 {
+            Vec::new()
+        } else {
+            (1..segments.min(MAX_PRECOMPUTED_FRACTIONS + 1))
+                .map(|k| k as f64 / segments as f64)
+                .collect()
+        };
+        EventScan {
+            n: n_events.min(MAX_EVENTS),
+            g: [0.0; MAX_EVENTS],
+            segments,
+            scan_fractions,
+            log: Vec::with_capacity(64),
+        }
+    }
+
+    fn eval<S: OdeSystem<N>>(&self, sys: &S, t: f64, y: &State<N>, g: &mut [f64; MAX_EVENTS]) {
+        if self.n > 0 {
+            sys.events(t, y, &mut g[..self.n]);
+        }
+    }
+
+    /// Evaluate the event functions at `(t, y)`: the start of the run, or after a handler
+    /// changed the state or the regime.
+    pub fn reset<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>) {
+        let mut g = [0.0; MAX_EVENTS];
+        self.eval(sys, t, y, &mut g);
+        self.g = g;
+    }
+
+    /// Whether the step provably holds no crossing of any event function: each has one strict
+    /// sign at both ends (`self.g` at `t0`, `g1` at `t1`) and the system's bound of its
+    /// straying from the chord ([`OdeSystem::event_chord_bounds`], all functions at once) is
+    /// below its smaller end value, so it cannot reach zero inside.
+    fn holds_no_crossing<S: OdeSystem<N>>(
+        &self,
+        sys: &S,
+        dense: &DenseOutput<N>,
+        t0: f64,
+        t1: f64,
+        g1: &[f64],
+    ) -> bool {
+        let deviation = dense.chord_deviation();
+        let mut bounds = [f64::NAN; MAX_EVENTS];
+        let n = self.n;
+        sys.event_chord_bounds(t0, t1, &deviation, &mut bounds[..n]);
+        (0..n).all(|i| {
+            let (a, b) = (self.g[i], g1[i]);
+            let margin = if a > 0.0 && b > 0.0 {
+                a.min(b)
+            } else if a < 0.0 && b < 0.0 {
+                -a.max(b)
+            } else {
+                return false;
+            };
+            // NaN (no bound) fails the test
+            bounds[i] < margin
+        })
+    }
+
+    /// Find and handle the events in `(t0, t1]`, in time order. Returns where the step ends if
+    /// a handler cut it (`Restart` or `Stop`), the state there (after the handler), and the
+    /// strongest action taken. `self.g` holds the values at `t0` on entry and at the end of
+    /// what was scanned on return.
+    pub fn scan<S: OdeSystem<N>>(
+        &mut self,
+        sys: &mut S,
+        dense: &DenseOutput<N>,
+        (t0, t1): (f64, f64),
+        y1: &State<N>,
+        ctl: &mut Control,
+        stats: &mut Stats,
+    ) -> (f64, State<N>, EventAction) {
+        let n = self.n;
+        if n == 0 {
+            return (t1, *y1, EventAction::Continue);
+        }
+        let mut g_end = [0.0; MAX_EVENTS];
+        self.eval(&*sys, t1, y1, &mut g_end);
+        if self.holds_no_crossing(&*sys, dense, t0, t1, &g_end) {
+            self.g = g_end;
+            return (t1, *y1, EventAction::Continue);
+        }
+        let segments = self.segments;
+        let fraction = |k: usize| match self.scan_fractions.get(k - 1) {
+            Some(&q) => q,
+            None => k as f64 / segments as f64,
+        };
+        // The directions, asked once per step: they change only when a handler runs, and the
+        // scan asks again after every handler (below).
+        let mut dirs = [Direction::Both; MAX_EVENTS];
+        for (i, d) in dirs[..n].iter_mut().enumerate() {
+            *d = sys.event_direction(i);
+        }
+        let mut lo_t = t0;
+        let mut g_lo = self.g;
+        let mut k = 1;
+        while k <= segments {
+            let hi_t = if k == segments {
+                t1
+            } else {
+                t0 + (t1 - t0) * fraction(k)
+            };
+            if hi_t <= lo_t {
+                k += 1;
+                continue;
+            }
+            let mut g_hi = g_end;
+            if hi_t != t1 {
+                self.eval(&*sys, hi_t, &dense.eval(hi_t), &mut g_hi);
+            }
+
+            // Locate every crossing in (lo_t, hi_t]; keep the earliest time.
+            let mut t_first = f64::INFINITY;
+            let mut times = [f64::INFINITY; MAX_EVENTS];
+            for i in 0..n {
+                if dirs[i].crosses(g_lo[i], g_hi[i]) {
+                    let sys = &*sys;
+                    let te = locate(
+                        |tt| sys.event(i, tt, &dense.eval(tt)),
+                        lo_t,
+                        g_lo[i],
+                        hi_t,
+                        g_hi[i],
+                    );
+                    times[i] = te;
+                    t_first = t_first.min(te);
+                }
+            }
+            if t_first.is_infinite() {
+                lo_t = hi_t;
+                g_lo = g_hi;
+                k += 1;
+                continue;
+            }
+            // Handle every event at that instant, in index order.
+            let y_state = if t_first == t1 {
+                *y1
+            } else {
+                dense.eval(t_first)
+            };
+            let mut y_after = y_state;
+            let mut strongest = EventAction::Continue;
+            for i in 0..n {
+                if times[i] != t_first {
+                    continue;
+                }
+                stats.events += 1;
+                self.log.push(EventRecord {
+                    t: t_first,
+                    index: i,
+                    rising: g_lo[i] < 0.0,
+                    state: y_state,
+                });
+                let action = sys.on_event(i, t_first, &mut y_after, ctl);
+                strongest = match (strongest, action) {
+                    (EventAction::Stop, _) | (_, EventAction::Stop) => EventAction::Stop,
+                    (EventAction::Restart, _) | (_, EventAction::Restart) => EventAction::Restart,
+                    _ => EventAction::Continue,
+                };
+            }
+            if strongest != EventAction::Continue {
+                return (t_first, y_after, strongest);
+            }
+            for (i, d) in dirs[..n].iter_mut().enumerate() {
+                *d = sys.event_direction(i);
+            }
+            // Record-only: go on scanning from the far side of the crossing, with the values
+            // the handlers may have changed.
+            self.eval(&*sys, t1, y1, &mut g_end);
+            lo_t = t_first;
+            let mut g = [0.0; MAX_EVENTS];
+            self.eval(&*sys, t_first, &y_state, &mut g);
+            g_lo = g;
+        }
+        self.g = g_lo;
+        (t1, *y1, EventAction::Continue)
     }
 }

@@ -1,5 +1,8 @@
 //! Solver settings: the method and everything that steers it.
 
+use crate::system::MAX_EVENTS;
+use crate::State;
+
 /// The integration method.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -135,5 +138,76 @@ impl Default for SolverOptions {
             event_subdivisions: 4,
             output: Output::None,
         }
+    }
+}
+
+impl SolverOptions {
+    /// Check the settings for a problem of `N` states and `n_events` event functions from
+    /// `(t0, y0)` to `t_end`; `Err` holds the message of an `InvalidInput` status.
+    pub fn check<const N: usize>(
+        &self,
+        t0: f64,
+        y0: &State<N>,
+        t_end: f64,
+        n_events: usize,
+    ) -> Result<(), String> {
+        let opts = self;
+        let tol_ok = |name: &str, tol: &Tolerance, allow_zero: bool| -> Result<(), String> {
+            if let Tolerance::PerComponent(v) = tol {
+                if v.len() != N {
+                    return Err(format!(
+                        "{name} has {} components, the state has {N}",
+                        v.len()
+                    ));
+                }
+            }
+            for i in 0..N {
+                let x = tol.get(i);
+                let bad = !x.is_finite() || x < 0.0 || (!allow_zero && x == 0.0);
+                if bad {
+                    return Err(format!("{name}[{i}] = {x}: must be a finite number > 0"));
+                }
+            }
+            Ok(())
+        };
+        tol_ok("rtol", &opts.rtol, true)?;
+        tol_ok("atol", &opts.atol, true)?;
+        if (0..N).any(|i| opts.rtol.get(i) == 0.0 && opts.atol.get(i) == 0.0) {
+            return Err("rtol and atol are both zero for a component".into());
+        }
+        if !t0.is_finite() || !t_end.is_finite() || t_end < t0 {
+            return Err(format!(
+                "t0 = {t0}, t_end = {t_end}: need finite t0 <= t_end"
+            ));
+        }
+        if !(opts.h_max > 0.0) {
+            return Err(format!("h_max = {}: must be > 0", opts.h_max));
+        }
+        if let Some(h0) = opts.h0 {
+            if !(h0 > 0.0 && h0.is_finite()) {
+                return Err(format!("h0 = {h0}: must be a finite number > 0"));
+            }
+        }
+        if !opts.method.is_adaptive() && !(opts.fixed_step > 0.0 && opts.fixed_step.is_finite()) {
+            return Err(format!(
+                "fixed_step = {}: must be a finite number > 0",
+                opts.fixed_step
+            ));
+        }
+        if n_events > MAX_EVENTS {
+            return Err(format!("{n_events} event functions: at most {MAX_EVENTS}"));
+        }
+        if !(0.0 < opts.min_ratio
+            && opts.min_ratio < 1.0
+            && opts.max_ratio > 1.0
+            && opts.safety > 0.0
+            && opts.safety <= 1.0)
+        {
+            return Err("step controller settings out of range".into());
+        }
+        if !y0.iter().all(|v| v.is_finite()) {
+            return Err("the initial state is not finite".into());
+        }
+        Ok(())
     }
 }

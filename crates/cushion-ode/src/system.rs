@@ -48,27 +48,24 @@ pub enum EventAction {
 /// What a handler may ask of the integrator besides its return value.
 #[derive(Debug)]
 pub struct Control {
-    pub(crate) new_time_stops: [f64; 8],
-    pub(crate) n_new_time_stops: usize,
+    /// Room for a few stops is reserved once per run, so the step loop does not allocate.
+    pub(crate) new_time_stops: Vec<f64>,
     pub(crate) stop_requested: bool,
 }
 
 impl Control {
     pub(crate) fn new() -> Self {
         Control {
-            new_time_stops: [0.0; 8],
-            n_new_time_stops: 0,
+            new_time_stops: Vec::with_capacity(8),
             stop_requested: false,
         }
     }
 
     /// Step onto time `t` exactly (a point where the right-hand side is not smooth), never
-    /// across it. Times at or before the current time are ignored. At most 8 per call.
+    /// across it. Times at or before the current time, at or after the end, or not finite are
+    /// ignored; any number may be asked for.
     pub fn add_time_stop(&mut self, t: f64) {
-        if self.n_new_time_stops < self.new_time_stops.len() {
-            self.new_time_stops[self.n_new_time_stops] = t;
-            self.n_new_time_stops += 1;
-        }
+        self.new_time_stops.push(t);
     }
 
     /// End the integration after this step (status `StoppedByEvent`); used for early ends.

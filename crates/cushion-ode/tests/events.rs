@@ -420,3 +420,44 @@ fn per_component_tolerances_are_used() {
         Status::InvalidInput
     );
 }
+
+/// A handler that schedules many time stops at once: every one is stepped onto.
+struct ManyStops {
+    reached: Vec<f64>,
+}
+
+impl OdeSystem<1> for ManyStops {
+    fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
+        State::<1>::new(1.0)
+    }
+    fn event_count(&self) -> usize {
+        1
+    }
+    fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
+        g[0] = y[0] - 0.5;
+    }
+    fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<1>, ctl: &mut Control) -> EventAction {
+        for k in 1..=20 {
+            ctl.add_time_stop(t + 0.01 * k as f64);
+        }
+        // cut the step here, so the stops lie ahead
+        EventAction::Restart
+    }
+    fn on_time_stop(&mut self, t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
+        self.reached.push(t);
+        EventAction::Continue
+    }
+}
+
+#[test]
+fn a_handler_may_schedule_any_number_of_time_stops() {
+    let mut sys = ManyStops { reached: Vec::new() };
+    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &SolverOptions::default());
+    assert_eq!(sol.status, Status::Success);
+    assert_eq!(sol.stats.time_stops, 20);
+    let want: Vec<f64> = (1..=20).map(|k| 0.5 + 0.01 * k as f64).collect();
+    assert_eq!(sys.reached.len(), 20);
+    for (got, want) in sys.reached.iter().zip(&want) {
+        assert!((got - want).abs() < 1e-15, "{got} vs {want}");
+    }
+}
