@@ -187,3 +187,13 @@ def test_ctrl_c_stops_a_sweep_and_resume_finishes_it(tmp_path):
     prov = json.loads((out / "provenance.json").read_text())
     assert prov["invocations"] == 2
     assert 0 < prov["runs_computed_now"] <= 4096 - 64 * len(chunks)
+
+
+def test_a_progress_bar_only_where_asked_or_seen(capfd):
+    cushion.sweep(SMALL, progress=True)
+    err = capfd.readouterr().err
+    assert "cushion sweep" in err and "64/64" in err
+    # progress=None: standard error is not a terminal under pytest, and no notebook runs
+    cushion.sweep(SMALL, progress=None)
+    cushion.sweep(SMALL, progress=False)
+    assert capfd.readouterr().err == ""
