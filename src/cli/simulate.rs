@@ -75,11 +75,10 @@ fn run_inner(args: &SimulateArgs) -> Result<i32, Failure> {
         .validate()
         .map_err(|e| Failure::Input(e.to_string()))?;
     let outputs = outputs(args)?;
-    let recording = RunOptions::recording(&scene, args.sample_interval)
-        .map_err(|e| {
-            let dt = args.sample_interval.unwrap_or_default();
-            Failure::Input(format!("--sample-interval = {dt}: {e}"))
-        })?;
+    let recording = RunOptions::recording(&scene, args.sample_interval).map_err(|e| {
+        let dt = args.sample_interval.unwrap_or_default();
+        Failure::Input(format!("--sample-interval = {dt}: {e}"))
+    })?;
     let opts = RunOptions {
         trajectory: !outputs.is_empty(),
         ..recording

@@ -49,7 +49,7 @@ impl RunOptions {
                     "expected a finite number of seconds >= 0 (0: steps and events only)".into(),
                 )
             }
-            Some(dt) if dt == 0.0 => None,
+            Some(0.0) => None,
             Some(dt) => Some(dt),
             None => Some(scene.t_end / 2000.0).filter(|dt| *dt > 0.0),
         };

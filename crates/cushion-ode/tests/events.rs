@@ -451,8 +451,16 @@ impl OdeSystem<1> for ManyStops {
 
 #[test]
 fn a_handler_may_schedule_any_number_of_time_stops() {
-    let mut sys = ManyStops { reached: Vec::new() };
-    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &SolverOptions::default());
+    let mut sys = ManyStops {
+        reached: Vec::new(),
+    };
+    let sol = solve(
+        &mut sys,
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &SolverOptions::default(),
+    );
     assert_eq!(sol.status, Status::Success);
     assert_eq!(sol.stats.time_stops, 20);
     let want: Vec<f64> = (1..=20).map(|k| 0.5 + 0.01 * k as f64).collect();

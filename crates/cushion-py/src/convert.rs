@@ -46,8 +46,13 @@ pub fn to_toml(key: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
     }
     Err(config_error(format!(
         "`{key}` = {}: wrong type {}, expected a number, string, boolean, list or dict",
-        v.repr().map(|r| r.to_string()).unwrap_or_else(|_| "?".into()),
-        v.get_type().name().map(|n| n.to_string()).unwrap_or_else(|_| "?".into()),
+        v.repr()
+            .map(|r| r.to_string())
+            .unwrap_or_else(|_| "?".into()),
+        v.get_type()
+            .name()
+            .map(|n| n.to_string())
+            .unwrap_or_else(|_| "?".into()),
     )))
 }
 
@@ -61,7 +66,11 @@ pub fn to_table(key: &str, d: &Bound<'_, PyDict>) -> PyResult<toml::Table> {
                 k.repr().map(|r| r.to_string()).unwrap_or_default()
             ))
         })?;
-        let path = if key.is_empty() { name.clone() } else { format!("{key}.{name}") };
+        let path = if key.is_empty() {
+            name.clone()
+        } else {
+            format!("{key}.{name}")
+        };
         t.insert(name, to_toml(&path, &v)?);
     }
     Ok(t)

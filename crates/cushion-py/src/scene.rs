@@ -37,9 +37,12 @@ pub fn scene_from(scene: Option<&Bound<'_, PyAny>>) -> PyResult<Scene> {
 pub fn apply_set(scene: &mut Scene, set: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
     if let Some(set) = set {
         for (k, v) in set.iter() {
-            let key: String = k
-                .extract()
-                .map_err(|_| config_error(format!("set: keys are \"section.key\" strings, got {}", k.repr().map(|r| r.to_string()).unwrap_or_default())))?;
+            let key: String = k.extract().map_err(|_| {
+                config_error(format!(
+                    "set: keys are \"section.key\" strings, got {}",
+                    k.repr().map(|r| r.to_string()).unwrap_or_default()
+                ))
+            })?;
             let value = to_toml(&key, &v)?;
             scene.set(&key, &value).map_err(config_error)?;
         }

@@ -1,7 +1,9 @@
 //! One run from Python: the scene built and checked, the run with the GIL released, and its
 //! summary, trajectory columns and event log handed back.
 
-use cushion_model::{simulate as run_scene, EventLogEntry, RunOptions, RunStatus, Scene, Trajectory, TrajectoryPoint};
+use cushion_model::{
+    simulate as run_scene, EventLogEntry, RunOptions, RunStatus, Scene, Trajectory, TrajectoryPoint,
+};
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString};
@@ -30,8 +32,12 @@ pub fn simulate<'py>(
     apply_set(&mut s, set)?;
     set_solver(&mut s, rtol, atol, method)?;
     s.validate().map_err(config_error)?;
-    let recording = RunOptions::recording(&s, sample_interval)
-        .map_err(|e| config_error(format!("sample_interval = {}: {e}", sample_interval.unwrap_or_default())))?;
+    let recording = RunOptions::recording(&s, sample_interval).map_err(|e| {
+        config_error(format!(
+            "sample_interval = {}: {e}",
+            sample_interval.unwrap_or_default()
+        ))
+    })?;
     let opts = RunOptions {
         trajectory,
         ..recording
@@ -50,15 +56,23 @@ pub fn simulate<'py>(
     Ok((from_json(py, &summary)?, traj, events(py, &result.events)?))
 }
 
-fn set_solver(s: &mut Scene, rtol: Option<f64>, atol: Option<f64>, method: Option<&str>) -> PyResult<()> {
+fn set_solver(
+    s: &mut Scene,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    method: Option<&str>,
+) -> PyResult<()> {
     if let Some(v) = rtol {
-        s.set("solver.rtol", &toml::Value::Float(v)).map_err(config_error)?;
+        s.set("solver.rtol", &toml::Value::Float(v))
+            .map_err(config_error)?;
     }
     if let Some(v) = atol {
-        s.set("solver.atol", &toml::Value::Float(v)).map_err(config_error)?;
+        s.set("solver.atol", &toml::Value::Float(v))
+            .map_err(config_error)?;
     }
     if let Some(m) = method {
-        s.set("solver.method", &toml::Value::String(m.into())).map_err(config_error)?;
+        s.set("solver.method", &toml::Value::String(m.into()))
+            .map_err(config_error)?;
     }
     Ok(())
 }
@@ -83,10 +97,7 @@ pub fn columns<'py>(py: Python<'py>, t: &Trajectory) -> PyResult<Bound<'py, PyAn
 
 /// The event log as `(t, names, states)`: the times, the names, and the state at each event as
 /// an `(n, 11)` array whose columns are those of the trajectory.
-pub fn events<'py>(
-    py: Python<'py>,
-    events: &[EventLogEntry],
-) -> PyResult<Events<'py>> {
+pub fn events<'py>(py: Python<'py>, events: &[EventLogEntry]) -> PyResult<Events<'py>> {
     let k = TrajectoryPoint::COLUMNS.len();
     let t = PyArray1::from_vec(py, events.iter().map(|e| e.t).collect());
     let states: Vec<f64> = events.iter().flat_map(|e| e.point.values()).collect();

@@ -57,7 +57,10 @@ fn run_detached<T: Send>(
     let progress = progress.map(|p| p.clone().unbind());
     let report = |py: Python<'_>| -> PyResult<()> {
         if let Some(p) = &progress {
-            let (done, total) = (counts.0.load(Ordering::Relaxed), counts.1.load(Ordering::Relaxed));
+            let (done, total) = (
+                counts.0.load(Ordering::Relaxed),
+                counts.1.load(Ordering::Relaxed),
+            );
             p.call1(py, (done, total))?;
         }
         Ok(())
@@ -84,7 +87,9 @@ fn run_detached<T: Send>(
                     }
                     Err(mpsc::RecvTimeoutError::Disconnected) => {
                         break (
-                            Err(pyo3::exceptions::PyRuntimeError::new_err("the sweep thread ended without a result")),
+                            Err(pyo3::exceptions::PyRuntimeError::new_err(
+                                "the sweep thread ended without a result",
+                            )),
                             interrupt,
                         )
                     }
@@ -101,14 +106,19 @@ fn run_detached<T: Send>(
 }
 
 /// Record batches as one Arrow IPC stream.
-fn ipc_bytes<'py>(py: Python<'py>, batches: &[RecordBatch], plan_schema: arrow_schema::SchemaRef) -> PyResult<Bound<'py, PyBytes>> {
+fn ipc_bytes<'py>(
+    py: Python<'py>,
+    batches: &[RecordBatch],
+    plan_schema: arrow_schema::SchemaRef,
+) -> PyResult<Bound<'py, PyBytes>> {
     let mut buf = Vec::new();
     {
         let mut w = arrow_ipc::writer::StreamWriter::try_new(&mut buf, &plan_schema)
             .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("Arrow IPC: {e}")))?;
         for b in batches {
-            w.write(b)
-                .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("Arrow IPC: {e}")))?;
+            w.write(b).map_err(|e| {
+                pyo3::exceptions::PyRuntimeError::new_err(format!("Arrow IPC: {e}"))
+            })?;
         }
         w.finish()
             .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("Arrow IPC: {e}")))?;
@@ -132,7 +142,9 @@ pub fn sweep<'py>(
 ) -> PyResult<Bound<'py, PyBytes>> {
     let sweep = sweep_from(config)?;
     if resume && out.is_none() {
-        return Err(config_error("resume=True needs out: the folder of the sweep to continue"));
+        return Err(config_error(
+            "resume=True needs out: the folder of the sweep to continue",
+        ));
     }
     let cancel = AtomicBool::new(false);
     let counts = (AtomicU64::new(0), AtomicU64::new(0));

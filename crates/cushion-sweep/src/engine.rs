@@ -44,6 +44,22 @@ impl Hooks<'_> {
     }
 }
 
+/// Runs finished so far (across chunks, and across invocations of a resumed sweep) out of
+/// the runs of the selection.
+pub struct RunCount {
+    pub done: AtomicU64,
+    pub total: u64,
+}
+
+impl RunCount {
+    pub fn new(done: u64, total: u64) -> RunCount {
+        RunCount {
+            done: AtomicU64::new(done),
+            total,
+        }
+    }
+}
+
 /// One computed run: its number, its axis values and its result.
 pub struct RunRow {
     pub run: u64,
@@ -155,8 +171,8 @@ impl Plan {
         RunRow { run, point, result }
     }
 
-    /// The runs `runs.get(i)` for `i` in `indices`, in order, on `pool`. `done` counts finished
-    /// runs across calls (for `hooks.progress`, out of `total`).
+    /// The runs `runs.get(i)` for `i` in `indices`, in order, on `pool`. `count` counts
+    /// finished runs across calls, for `hooks.progress`.
     pub fn compute_chunk(
         &self,
         runs: &Runs,
@@ -164,8 +180,7 @@ impl Plan {
         pool: &rayon::ThreadPool,
         sim: &Model,
         hooks: &Hooks,
-        done: &AtomicU64,
-        total: u64,
+        count: &RunCount,
     ) -> Result<Vec<RunRow>, SweepError> {
         let rows: Vec<Option<RunRow>> = pool.install(|| {
             indices
@@ -175,9 +190,9 @@ impl Plan {
                         return None;
                     }
                     let row = self.run(runs.get(i), sim);
-                    let d = done.fetch_add(1, Ordering::Relaxed) + 1;
+                    let d = count.done.fetch_add(1, Ordering::Relaxed) + 1;
                     if let Some(p) = hooks.progress {
-                        p(d, total);
+                        p(d, count.total);
                     }
                     Some(row)
                 })
@@ -226,13 +241,13 @@ pub fn compute_with(
 ) -> Result<Vec<RecordBatch>, SweepError> {
     let (pool, _) = thread_pool(threads)?;
     plan.check_scenes(&pool)?;
-    let done = AtomicU64::new(0);
+    let count = RunCount::new(0, runs.len());
     let mut batches = Vec::new();
     for indices in plan.chunks(&runs) {
         if hooks.cancelled() {
             return Err(SweepError::Cancelled);
         }
-        let rows = plan.compute_chunk(&runs, indices, &pool, sim, hooks, &done, runs.len())?;
+        let rows = plan.compute_chunk(&runs, indices, &pool, sim, hooks, &count)?;
         batches.push(plan.batch(&rows));
     }
     if batches.is_empty() {

@@ -70,12 +70,7 @@ impl Journal {
     /// Whether chunk `c` is on disk and reads back whole: `rows` rows of this sweep's columns,
     /// and its MCAP file, when there is one, readable to the end. A chunk that does not is
     /// removed, and the reason returned as a warning; it is then computed again.
-    pub fn check_chunk(
-        &self,
-        c: u64,
-        rows: u64,
-        schema: &TableSchema,
-    ) -> (bool, Option<String>) {
+    pub fn check_chunk(&self, c: u64, rows: u64, schema: &TableSchema) -> (bool, Option<String>) {
         let pq = self.chunk_path(c, "parquet");
         if !pq.exists() {
             return (false, None);
@@ -121,7 +116,10 @@ impl Journal {
         batch: arrow_array::RecordBatch,
         rows: &[RunRow],
     ) -> Result<(), SweepError> {
-        let recorded: Vec<&RunRow> = rows.iter().filter(|r| r.result.trajectory.is_some()).collect();
+        let recorded: Vec<&RunRow> = rows
+            .iter()
+            .filter(|r| r.result.trajectory.is_some())
+            .collect();
         if !recorded.is_empty() {
             let path = self.chunk_path(c, "mcap");
             let mut f = AtomicFile::create(&path).map_err(|e| io_err(path.display(), e))?;
@@ -144,7 +142,11 @@ impl Journal {
             }
             f.commit().map_err(|e| io_err(path.display(), e))?;
         }
-        write_parquet_atomic(&self.chunk_path(c, "parquet"), schema, std::iter::once(Ok(batch)))
+        write_parquet_atomic(
+            &self.chunk_path(c, "parquet"),
+            schema,
+            std::iter::once(Ok(batch)),
+        )
     }
 
     /// Build `summary.parquet`, `summary.csv` (and `trajectories.mcap`) in `out_dir` from the
@@ -157,10 +159,12 @@ impl Journal {
         recorded: bool,
     ) -> Result<usize, SweepError> {
         let batches = || {
-            (0..n_chunks).flat_map(move |c| match read_parquet(&self.chunk_path(c, "parquet")) {
-                Ok(it) => Box::new(it) as Box<dyn Iterator<Item = _>>,
-                Err(e) => Box::new(std::iter::once(Err(e))),
-            })
+            (0..n_chunks).flat_map(
+                move |c| match read_parquet(&self.chunk_path(c, "parquet")) {
+                    Ok(it) => Box::new(it) as Box<dyn Iterator<Item = _>>,
+                    Err(e) => Box::new(std::iter::once(Err(e))),
+                },
+            )
         };
         // The CSV (text formatting) on a second thread while this one writes the Parquet file.
         let csv_path = out_dir.join("summary.csv");
@@ -183,8 +187,8 @@ impl Journal {
             (pq, h.join())
         });
         pq?;
-        let (failed, csv) = csv
-            .map_err(|_| SweepError::Internal("summary.csv: writer thread panicked".into()))??;
+        let (failed, csv) =
+            csv.map_err(|_| SweepError::Internal("summary.csv: writer thread panicked".into()))??;
         csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
 
         // Only when a run of this output was recorded (a shard may hold none of the listed runs).

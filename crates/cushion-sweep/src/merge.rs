@@ -16,8 +16,8 @@ use arrow_array::{Array, Int64Array, RecordBatch};
 use arrow_schema::SchemaRef;
 
 use crate::atomic::{write_atomic, AtomicFile};
-use crate::out_lock::OutputLock;
 use crate::error::{io_err, SweepError};
+use crate::out_lock::OutputLock;
 use crate::parquet_io::{count_failed_batch, read_parquet};
 use crate::summary_table::{csv_text, parquet_properties, write_csv_rows};
 

@@ -121,10 +121,7 @@ mod tests {
         assert!(w.contains("cannot lock"), "{w}");
         // a lock taken for real warns of nothing
         drop(lock);
-        assert_eq!(
-            OutputLock::take(out).unwrap().warning(out),
-            None
-        );
+        assert_eq!(OutputLock::take(out).unwrap().warning(out), None);
     }
 
     #[test]

@@ -19,13 +19,13 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use cushion_model::simulate;
 
 use crate::atomic::write_atomic;
-use crate::engine::{thread_pool, Hooks, Model, Plan, RunRow};
+use crate::engine::{thread_pool, Hooks, Model, Plan, RunCount, RunRow};
 use crate::error::{io_err, SweepError};
 use crate::invocations::Invocation;
 use crate::journal::Journal;
@@ -109,7 +109,10 @@ pub fn run_sweep_with(
     // Every run's scene is built and checked before any run starts.
     let t_phase = Instant::now();
     plan.check_scenes(&pool)?;
-    phases.push(("parse and check every run's scene", t_phase.elapsed().as_secs_f64()));
+    phases.push((
+        "parse and check every run's scene",
+        t_phase.elapsed().as_secs_f64(),
+    ));
 
     let sweep = &plan.sweep;
     let out_dir = opts.out.clone().unwrap_or_else(|| {
@@ -191,9 +194,9 @@ pub fn run_sweep_with(
         .iter()
         .map(|&c| chunks[c as usize].end - chunks[c as usize].start)
         .sum();
-    let done = AtomicU64::new(runs.len() - runs_todo);
+    let count = RunCount::new(runs.len() - runs_todo, runs.len());
     if let Some(p) = hooks.progress {
-        p(done.load(Ordering::Relaxed), runs.len());
+        p(count.done.load(Ordering::Relaxed), count.total);
     }
     let chunks_written = AtomicUsize::new(0);
 
@@ -220,15 +223,8 @@ pub fn run_sweep_with(
         });
         let mut computed = Ok(());
         for &c in &todo {
-            let rows = plan.compute_chunk(
-                &runs,
-                chunks[c as usize].clone(),
-                &pool,
-                sim,
-                hooks,
-                &done,
-                runs.len(),
-            );
+            let rows =
+                plan.compute_chunk(&runs, chunks[c as usize].clone(), &pool, sim, hooks, &count);
             match rows {
                 Ok(rows) => {
                     if to_writer.send((c, rows)).is_err() {
@@ -243,9 +239,11 @@ pub fn run_sweep_with(
         }
         drop(to_writer);
         // The writer finishes the chunks already handed to it, even when cancelled.
-        let written = writer
-            .join()
-            .unwrap_or_else(|_| Err(SweepError::Internal("the chunk writer thread panicked".into())));
+        let written = writer.join().unwrap_or_else(|_| {
+            Err(SweepError::Internal(
+                "the chunk writer thread panicked".into(),
+            ))
+        });
         computed.and(written)
     });
     let write_seconds = compute_and_write?;

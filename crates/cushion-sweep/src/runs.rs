@@ -93,7 +93,10 @@ mod tests {
     #[test]
     fn a_range_is_contiguous_and_checked() {
         let r = Runs::range(10, 3, 7).unwrap();
-        assert_eq!((0..r.len()).map(|i| r.get(i)).collect::<Vec<_>>(), [3, 4, 5, 6]);
+        assert_eq!(
+            (0..r.len()).map(|i| r.get(i)).collect::<Vec<_>>(),
+            [3, 4, 5, 6]
+        );
         assert!(Runs::range(10, 7, 3).is_err());
         assert!(Runs::range(10, 3, 11).is_err());
         assert!(Runs::range(10, 10, 10).unwrap().is_empty());

@@ -59,11 +59,11 @@ fn a_panicking_run_is_a_row_and_the_rest_run() {
     let f = write_sweep(dir.path(), BODY);
     let out = dir.path().join("o");
     let o = run(
-            &f,
-            &SweepOptions {
+        &f,
+        &SweepOptions {
             out: Some(out.clone()),
             threads: Some(2),
-                ..Default::default()
+            ..Default::default()
         },
         &flaky,
     )
@@ -278,7 +278,11 @@ fn a_damaged_chunk_is_recomputed_on_resume() {
     let f = write_sweep(dir.path(), &body);
     let (csv, pq) = whole(&f, &dir.path().join("whole"));
     let mcap = fs::read(dir.path().join("whole").join("trajectories.mcap")).unwrap();
-    for (damaged, cut) in [("chunk-00000001.parquet", 1000), ("chunk-00000001.parquet", 0), ("chunk-00000000.mcap", 1000)] {
+    for (damaged, cut) in [
+        ("chunk-00000001.parquet", 1000),
+        ("chunk-00000001.parquet", 0),
+        ("chunk-00000000.mcap", 1000),
+    ] {
         let out = dir.path().join(format!("o-{damaged}-{cut}"));
         cancelled_after(&f, &out, 3);
         // as a disk-full stop leaves a file: cut short
@@ -295,8 +299,16 @@ fn a_damaged_chunk_is_recomputed_on_resume() {
             o.warnings
         );
         assert_eq!(fs::read(out.join("summary.csv")).unwrap(), csv, "{damaged}");
-        assert_eq!(fs::read(out.join("summary.parquet")).unwrap(), pq, "{damaged}");
-        assert_eq!(fs::read(out.join("trajectories.mcap")).unwrap(), mcap, "{damaged}");
+        assert_eq!(
+            fs::read(out.join("summary.parquet")).unwrap(),
+            pq,
+            "{damaged}"
+        );
+        assert_eq!(
+            fs::read(out.join("trajectories.mcap")).unwrap(),
+            mcap,
+            "{damaged}"
+        );
     }
 }
 
@@ -306,7 +318,8 @@ fn the_engine_in_memory_gives_the_rows_of_the_summary_file() {
     let f = write_sweep(dir.path(), BODY);
     let out = dir.path().join("o");
     whole(&f, &out);
-    let on_disk = cushion_sweep::parquet_io::read_parquet_all(&out.join("summary.parquet")).unwrap();
+    let on_disk =
+        cushion_sweep::parquet_io::read_parquet_all(&out.join("summary.parquet")).unwrap();
     let on_disk = arrow_select::concat::concat_batches(&on_disk[0].schema(), &on_disk).unwrap();
 
     let plan = Plan::new(SweepFile::from_file(&f).unwrap()).unwrap();
@@ -325,7 +338,14 @@ fn the_engine_in_memory_gives_the_rows_of_the_summary_file() {
     assert_eq!(in_memory, on_disk);
 
     // a range of runs is those rows of the whole
-    let part = compute_with(&plan, Runs::range(20, 5, 12).unwrap(), Some(1), &Hooks::default(), &simulate).unwrap();
+    let part = compute_with(
+        &plan,
+        Runs::range(20, 5, 12).unwrap(),
+        Some(1),
+        &Hooks::default(),
+        &simulate,
+    )
+    .unwrap();
     let part = arrow_select::concat::concat_batches(&part[0].schema(), &part).unwrap();
     assert_eq!(part, on_disk.slice(5, 7));
 
