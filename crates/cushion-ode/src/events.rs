@@ -80,43 +80,6 @@ pub fn locate(
     b
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn finds_a_simple_root_to_a_few_ulp_on_the_far_side() {
-        let root = 2f64.sqrt();
-        let t = locate(|x| x * x - 2.0, 1.0, -1.0, 2.0, 2.0);
-        assert!(t * t - 2.0 >= 0.0, "far side");
-        assert!(
-            (t - root).abs() <= 4.0 * f64::EPSILON * 2.0,
-            "{t} vs {root}"
-        );
-    }
-
-    #[test]
-    fn falling_crossing_far_side_is_on_the_new_side() {
-        let t = locate(|x| (x).cos(), 1.0, 1f64.cos(), 2.0, 2f64.cos());
-        assert!(t.cos() <= 0.0);
-        assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
-    }
-
-    #[test]
-    fn flat_function_converges_by_bisection() {
-        // x^9 is very flat near 0: regula falsi alone stalls.
-        let t = locate(
-            |x: f64| (x - 0.3).powi(9),
-            0.0,
-            -(0.3f64.powi(9)),
-            1.0,
-            0.7f64.powi(9),
-        );
-        assert!((t - 0.3).abs() < 1e-3, "{t}");
-        assert!((t - 0.3f64).powi(9) >= 0.0);
-    }
-}
-
 /// Interior scan fractions computed in advance; more subdivisions than this (unusual) are
 /// divided on the fly.
 const MAX_PRECOMPUTED_FRACTIONS: usize = 64;
@@ -316,5 +279,42 @@ impl<const N: usize> EventScan<N> {
         }
         self.g = g_lo;
         (t1, *y1, EventAction::Continue)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_a_simple_root_to_a_few_ulp_on_the_far_side() {
+        let root = 2f64.sqrt();
+        let t = locate(|x| x * x - 2.0, 1.0, -1.0, 2.0, 2.0);
+        assert!(t * t - 2.0 >= 0.0, "far side");
+        assert!(
+            (t - root).abs() <= 4.0 * f64::EPSILON * 2.0,
+            "{t} vs {root}"
+        );
+    }
+
+    #[test]
+    fn falling_crossing_far_side_is_on_the_new_side() {
+        let t = locate(|x| (x).cos(), 1.0, 1f64.cos(), 2.0, 2f64.cos());
+        assert!(t.cos() <= 0.0);
+        assert!((t - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn flat_function_converges_by_bisection() {
+        // x^9 is very flat near 0: regula falsi alone stalls.
+        let t = locate(
+            |x: f64| (x - 0.3).powi(9),
+            0.0,
+            -(0.3f64.powi(9)),
+            1.0,
+            0.7f64.powi(9),
+        );
+        assert!((t - 0.3).abs() < 1e-3, "{t}");
+        assert!((t - 0.3f64).powi(9) >= 0.0);
     }
 }
