@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from . import _cushion
+from ._args import path_or_dict
 
 #: Trajectory columns, in the order of ``--csv`` (SI units: s, m, m/s, Pa, N).
 COLUMNS = ("t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r")
@@ -121,15 +122,9 @@ def _direction(name: str) -> str:
 
 
 def _scene_arg(scene: Any) -> Any:
-    if scene is None or isinstance(scene, dict):
-        return scene
-    if isinstance(scene, (str, os.PathLike)):
-        return os.fspath(scene)
-    if isinstance(scene, Mapping):
-        return dict(scene)
-    raise _cushion.ConfigError(
-        f"scene = {scene!r}: expected a path to a scene file (TOML), a dict of scene keys, or None"
-    )
+    if scene is None:
+        return None
+    return path_or_dict(scene, "scene", "a path to a scene file (TOML), a dict of scene keys, or None")
 
 
 def simulate(

@@ -11,6 +11,7 @@ import pandas as pd
 import pyarrow as pa
 
 from . import _cushion
+from ._args import path_or_dict
 from ._progress import Progress, progress_for
 
 
@@ -21,13 +22,7 @@ def frame_from_ipc(data: bytes) -> pd.DataFrame:
 
 def config_arg(config: Any) -> Any:
     """A sweep config as the engine takes it: a path string or a plain dict."""
-    if isinstance(config, (str, os.PathLike)):
-        return os.fspath(config)
-    if isinstance(config, Mapping):
-        return dict(config)
-    raise _cushion.ConfigError(
-        f"config = {config!r}: expected a path to a sweep file (TOML) or a dict of the same shape"
-    )
+    return path_or_dict(config, "config", "a path to a sweep file (TOML) or a dict of the same shape")
 
 
 def _git_commit() -> str | None:
