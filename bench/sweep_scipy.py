@@ -47,7 +47,7 @@ def scipy_run(row):
     sc.R_O, sc.A_O = r_o, math.pi * r_o**2
     sc.M_P = float(row["object.mass"])
     t0 = time.perf_counter()
-    _, y, nfev, _ = sc.run(float(row["robot.dead_time"]))
+    _, y, nfev, _, _ = sc.run(float(row["robot.dead_time"]))
     return time.perf_counter() - t0, y[3], nfev
 
 
