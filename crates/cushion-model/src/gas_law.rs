@@ -76,9 +76,10 @@ impl GasLaw {
         if u.abs() <= U_MAX {
             // Estrin's scheme: powers u^2, u^4, u^8 and pairs of terms, a chain of five dependent
             // multiply-adds where Horner's rule has twelve. The stages of a step wait on one
-            // another's right-hand side, so the depth of this chain, not the count of its
-            // operations, is what the run's time sees: the paper's hydraulic scene runs about
-            // 15 % faster so (bench/README-model.md, session 10), with 3 % more instructions.
+            // another's right-hand side, so the depth of this chain (its latency), not the count
+            // of its operations, is what the run's time sees: a few more multiplications buy a
+            // chain less than half as long (`bash bench/wall_time.sh` shows the effect). Its
+            // accuracy is guarded by `tests::matches_pow_to_a_few_ulp`.
             let c = &self.coef;
             let u2 = u * u;
             let u4 = u2 * u2;

@@ -7,8 +7,7 @@
 //! value is kept apart, `fr_after_jump`: a value at a jump needs no search.) When the
 //! largest sample is a step's end, the peak may lie on either side of it: just before it in
 //! that step, or just after it in the next one. The next step is then kept as well and both
-//! sides are searched (a peak found only on the near side was up to 1e-3 low in bistable
-//! back-stop impacts).
+//! sides are searched (`tests/peaks.rs::peaks_just_after_a_step_end_are_found`).
 //!
 //! Two peaks of nearly the same height in different places (a bistable module's back-stop
 //! impact and a later one, 0.04 % apart) may be sampled in the wrong order: the one with the
@@ -70,9 +69,10 @@ pub(crate) const RIVAL: f64 = 1e-2;
 /// Relative distance below the largest sample within which another peak is kept and refined as
 /// well, at the tolerance `rtol`: `RIVAL (rtol / 1e-6)^0.4` within `[RIVAL, 0.2]`. A sample
 /// lies below its peak by about the square of the step (a 5th-order method's step grows like
-/// `rtol^(1/5)`), and at loose tolerances by more than `RIVAL` (rtol 1e-3: a forward stop's
-/// impact sampled 1.6 % below a later one's sample held the larger peak, 1.3 % above it). At
-/// rtol 1e-6 and tighter the window is `RIVAL`, which keeps the extra refinements rare.
+/// `rtol^(1/5)`), and at loose tolerances by more than `RIVAL`: there the peak whose sample
+/// happens to lie lowest may be the largest
+/// (`tests::a_peak_sampled_low_among_several_near_ones_is_still_found`). At rtol 1e-6 and
+/// tighter the window is `RIVAL`, which keeps the extra refinements rare.
 pub(crate) fn rival_window(rtol: f64) -> f64 {
     (RIVAL * (rtol / 1e-6).powf(0.4)).clamp(RIVAL, 0.2)
 }
@@ -89,7 +89,8 @@ const RIVALS: usize = 3;
 /// Two refined peaks within this relative distance are the same height (to rounding: the
 /// search finds a smooth peak to ~1e-14), and the earlier one is the peak. A bistable spring's
 /// two extreme forces are equal and opposite, so a tool that crosses both slowly meets the
-/// same largest `|F_r|` twice; without a rule, rounding chose the sign and the time.
+/// same largest `|F_r|` twice; without a rule, rounding would choose the sign and the time
+/// (`tests::of_two_peaks_of_the_same_height_the_earlier_is_the_peak`).
 pub(crate) const TIE: f64 = 1e-12;
 
 /// Another peak's step (and the one after it, if kept) with its largest sample.
@@ -153,8 +154,8 @@ impl PeakCandidate {
     /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
     /// previous one becomes a rival if the quantity fell after it (another peak, or another top
     /// of this one), near enough.
-    // on every new largest sample: as a call, with its moves of the step, it cost about 1 % of
-    // a run's instructions
+    // runs on every new largest sample: as a call, moving the step in and out, it costs about
+    // 1 % of a run's instructions (`bash bench/instructions.sh`)
     #[inline(always)]
     fn set(&mut self, step: PeakStep, value: f64) {
         if let Some(i) = self.rising.take() {
@@ -163,10 +164,10 @@ impl PeakCandidate {
         }
         let window = below(value, self.window);
         // the old step is kept if its quantity turned after it (`fell`; a dip of `RIVAL` is a
-        // fall too), even by less than `RIVAL` (then the two are one peak with a shallow dip,
-        // whose larger sample need not hold the larger top: a stroke that turns, falls 0.01 %
-        // and rises again to a sample above the first top's, 6.8 rtol below that top, in a
-        // 29 ms step); while it rises, never
+        // fall too), even by less than `RIVAL`: then the two are one peak with two tops and a
+        // shallow dip, and the larger sample need not hold the larger top (a long step's
+        // samples can miss the first top; `tests::a_higher_top_before_a_shallow_dip_is_found`);
+        // while it rises, never
         if self.fell && self.best >= window {
             if let Some(old) = self.at.take() {
                 if let Some(i) = self.slot_for(self.best) {

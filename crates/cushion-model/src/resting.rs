@@ -5,7 +5,8 @@
 //! Hunt–Crossley damping `chi d^1.5` grows with the depth): DOPRI5 then steps at its stability
 //! limit, and its solution keeps a wobble of the tolerance's size in the tool's speed (about
 //! `rtol v_r`: 1e-6 m/s at 1 m/s). The speed test of the standing robot's early end
-//! (`100 atol`) never passes on it, so such runs used to integrate the resting tool to `t_end`.
+//! (`100 atol`) never passes on it, so without the test below such runs would integrate the
+//! resting tool to `t_end` (`tests/runs.rs::early_end_while_the_robot_cruises_on`).
 //!
 //! Here the tool is at rest when its deviation from the equilibrium on its stop, as the speed
 //! `hypot(sd, w0 u)` (`u = s - s_eq`; the largest speed its energy allows in the linearised
@@ -97,10 +98,10 @@ mod tests {
 
     #[test]
     fn an_object_slower_than_the_cruising_robot_does_not() {
-        // The object is faster than the tool of the moment but slower than the robot: the tool
-        // rides on with the robot and reaches it again (a corner of `wide_scenes 6000 777
-        // --corners`, scene 1236, ended early this way and put the object through the tool
-        // at t_end: energy residual 0.43).
+        // The object is faster than the tool of the moment but slower than the robot: the
+        // resting tool rides on with the robot and reaches the object again, so an early end
+        // here would extrapolate the object through the tool by `t_end` (and the energy ledger
+        // would no longer close).
         assert!(!may_end(4e-6, 2e-6));
         assert!(!may_end(0.0, 1e-9));
     }

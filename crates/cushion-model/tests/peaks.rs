@@ -1,7 +1,7 @@
 //! Peaks of the summary (`peak_robot_force`, `peak_contact_force`, `max_stroke`) against a run
 //! at rtol 1e-11, in scenes of the design space where the largest sample of a step is its end
-//! and the peak lies just after it, in the next step (there the peak used to come out up to
-//! 1e-3 low at rtol 1e-6), and where two peaks are nearly equal.
+//! and the peak lies just after it, in the next step (a search of the first step alone comes
+//! out up to 1e-3 low there at rtol 1e-6), and where two peaks are nearly equal.
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
@@ -120,9 +120,8 @@ fn a_force_that_jumps_when_the_robot_stops_is_its_peak() {
     // A rigid tool (the flange itself) still presses a heavy object on a soft contact when the
     // robot stops braking: `F_r = -(m_t a_r + F_c)` jumps there by `m_t a_brake` = 7.5 N, from
     // -10.2 N to -17.70 N, and falls after it as the contact unloads. The largest |F_r| is
-    // the first value after the stop, which no sample inside a step sees; the runs at rtol
-    // 1e-5 to 1e-7 reported the braking phase's peak, 17.36 N, instead (found by
-    // `examples/wide_accuracy.rs`, scene 1319).
+    // the first value after the stop, which no sample inside a step sees; a search inside
+    // steps alone reports the braking phase's peak, 17.36 N, at rtol 1e-5 to 1e-7.
     let scene = |rtol: &str| {
         let mut s = Scene::default();
         for (k, v) in [

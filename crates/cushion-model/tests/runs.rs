@@ -272,7 +272,7 @@ fn energy_ledger_closes_for_each_module() {
 fn the_ledger_residual_of_a_scene_where_nothing_happens_is_small() {
     // No object: the tool rides along at rest on its stop, the run ends after a step. The
     // work and every energy change are of rounding size (~1e-17 J); their mismatch over the
-    // largest of them alone was noise over noise (0.13 hydraulic, 0.27 bistable). Over the
+    // largest of them alone would be noise over noise (0.13 hydraulic, 0.27 bistable). Over the
     // largest term of `W + E(0) = E(t) + D`, which counts the tool's kinetic energy, it is
     // rounding again.
     for module in ["hydraulic", "bistable", "rigid"] {
@@ -840,7 +840,7 @@ fn a_stuck_tool_slips_only_when_its_load_changes() {
     // A design-space scene where the tool creeps onto its forward stop and sticks with a
     // holding force of d to 4e-13, long after the object has left and the robot cruises.
     // Nothing changes after that stick, so a slip without a contact or robot event in between
-    // would be rounding noise (it was, at 203 ms, before the stick margin).
+    // would be rounding noise (without the stick margin one comes at 203 ms).
     let base = with(
         paper("paper-hydraulic-dt70"),
         &[
@@ -881,11 +881,11 @@ fn a_stuck_tool_slips_only_when_its_load_changes() {
 fn a_reverse_slip_after_a_failed_stick_test_is_followed() {
     // Two scenes of a sweep (LHS over every option) where the tool's slip speed reaches zero
     // while static friction cannot hold it: it slips back briefly and then sticks. The return
-    // through zero lay within the step after the failed test, from a slip speed of exactly zero,
-    // which never fires: the run missed the stick, slipped on with its friction pushing the tool
-    // instead of braking it, and ended with the object 2.5e-3 m/s (bistable) and 1.4e-3 m/s
-    // (hydraulic, plane friction) too fast at rtol 1e-8. Now each agrees with an rtol 1e-10 run,
-    // event for event.
+    // through zero lies within the step after the failed test, and a slip speed that starts
+    // that step at exactly zero never fires: without the slip margin the run misses the
+    // stick, slips on with its friction pushing the tool instead of braking it, and ends with
+    // the object 2.5e-3 m/s (bistable) and 1.4e-3 m/s (hydraulic, plane friction) too fast at
+    // rtol 1e-8. Each must agree with an rtol 1e-10 run, event for event.
     let scenes = [
         with(
             paper("paper-hydraulic-dt70"),
@@ -929,9 +929,10 @@ fn a_reverse_slip_after_a_failed_stick_test_is_followed() {
 fn a_contact_released_before_the_bodies_part_converges_with_the_tolerance() {
     // A sweep scene (rigid module, a 0.93 kg object): the bodies part faster than
     // k_c / chi_c = 0.44 m/s, so the contact force falls to zero at 14.5 ms, 3.3 ms before the
-    // penetration does. Hunt–Crossley's clamp at zero was a kink inside a step there: the
-    // object's final speed was 4.3e-5 m/s off at rtol 1e-6 (33 rtol; 3.4e-5 at 1e-5). The
-    // release is an event now, and the error follows the tolerance.
+    // penetration does. A clamp at zero inside the right-hand side puts a kink inside a step
+    // there, and the error no longer follows the tolerance (the object's final speed 4.3e-5
+    // m/s off at rtol 1e-6, 33 rtol; 3.4e-5 at 1e-5). With the release as an event it must
+    // stay below 3 rtol.
     let base = with(
         paper("paper-hydraulic-dt70"),
         &[
@@ -1134,9 +1135,9 @@ fn solver_failures_are_statuses_with_messages() {
     assert!(r.summary.stats.stiff && r.summary.message.is_empty());
 }
 
-/// A hydraulic run held at DOPRI5's stability limit by the orifice's damping (design-space run
-/// 10510: 49 steps in a row at a constant 0.88 ms, `h |lambda|` estimated at 3.15-3.20) is
-/// flagged stiff; under Hairer's threshold of 3.25 it was not. The paper scenes are not.
+/// A hydraulic run held at DOPRI5's stability limit by the orifice's damping (a design-space
+/// scene: 49 steps in a row at a constant 0.88 ms, `h |lambda|` estimated at 3.15-3.20) is
+/// flagged stiff; Hairer's threshold of 3.25 would not flag it. The paper scenes are not.
 #[test]
 fn a_run_held_at_the_stability_limit_is_flagged_stiff() {
     let s = with(
@@ -1250,7 +1251,8 @@ fn cavitation_bounds_the_chamber_pressure() {
 
 /// A contact that ends with its penetration located at exactly zero, followed at once by a new
 /// touch: found (contact events have a 1e-14 m hysteresis), so the tool does not sink into the
-/// back stop unnoticed. Found by the energy ledger (residual 9e-3 before the fix).
+/// back stop unnoticed (without the hysteresis the touch is missed, and the energy ledger's
+/// residual shows it, near 1e-2).
 #[test]
 fn a_touch_right_after_a_contact_end_is_found() {
     let s = with(

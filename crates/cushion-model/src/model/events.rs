@@ -46,16 +46,16 @@ const CONTACT_HYSTERESIS: f64 = 1e-14;
 /// or object to slip. A part sticks with a holding force just under the limit; its stuck value
 /// is then constant only up to rounding (a few ulp of the forces it is the difference of), and
 /// without the margin that noise could set off a slip a moment later and a stick right after
-/// (seen with the tool settled at `|F_f| = d` to 4e-13).
+/// (`tests/runs.rs::a_stuck_tool_slips_only_when_its_load_changes`).
 const STICK_HYSTERESIS: f64 = 1e-9;
 
 /// Speed (m/s) past zero at which a slipping part's stick test runs: its event function is
 /// its slip speed plus this on the side it slips to (the tool: `sd + dir 1e-12`; the object,
 /// which slides forward only: `v_p + 1e-12`). A slip begins at a speed of zero, and a function
 /// that starts a step at exactly zero never fires there; without the margin, a reverse slip
-/// that turns back within the step after a failed stick test was invisible, and the tool went
-/// on slipping with its friction pushing instead of braking, until its speed next passed zero
-/// (`tests/runs.rs`: the object then left up to 2.5e-3 m/s too fast at rtol 1e-8).
+/// that turns back within the step after a failed stick test is invisible, and the tool goes
+/// on slipping with its friction pushing instead of braking, until its speed next passes zero
+/// (`tests/runs.rs::a_reverse_slip_after_a_failed_stick_test_is_followed`).
 const SLIP_HYSTERESIS: f64 = 1e-12;
 
 /// Relative margin (of `k`) by which `k + chi dd` must rise above zero for a released contact

@@ -104,9 +104,10 @@ impl Model {
             // Where the step begins, the force on a rigid or stuck tool jumps by `m_t` times
             // the jump of the robot's acceleration, and a stick or slip changes the friction:
             // the largest |F_r| may be the first value on this side, which no sample inside
-            // the step sees (a rigid tool pressing an object when the robot stops: 17.71 N
-            // reported for 17.80 N at rtol 1e-6). It is kept apart from the peak search: a
-            // value at a jump is exact where it is.
+            // the step sees (a rigid tool still pressing an object when the robot stops
+            // braking: `F_r` jumps by `m_t a_brake` there and falls after;
+            // `tests/peaks.rs::a_force_that_jumps_when_the_robot_stops_is_its_peak`). It is
+            // kept apart from the peak search: a value at a jump is exact where it is.
             let f_r = self.eval_inline(t0, step.y0.as_slice(), &seg, &r).f_r;
             if self.fr_after_jump.is_none_or(|(_, f)| f_r.abs() > f.abs()) {
                 self.fr_after_jump = Some((t0, f_r));
