@@ -1,7 +1,7 @@
 //! A recorded run read back from an MCAP file (`cushion simulate --mcap`, or a sweep's
 //! `trajectories.mcap`).
 
-use cushion_sweep::trajectory_mcap::{read_run, recorded_runs as runs_in, ReadError};
+use cushion_sweep::mcap_read::{read_run, recorded_runs as runs_in, ReadError};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 

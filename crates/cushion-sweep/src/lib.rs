@@ -15,6 +15,7 @@
 
 // Output sinks for one run (used by `cushion simulate` and by recorded sweep runs).
 pub mod figure;
+pub mod mcap_read;
 pub mod trajectory_csv;
 pub mod trajectory_mcap;
 
