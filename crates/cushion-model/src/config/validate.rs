@@ -1,7 +1,9 @@
 //! Validation of a scene: every value in its range and every combination consistent (SPEC
 //! and issue 3), refused with a message that names the key, the value and what is allowed.
 
-use super::{format_float, invalid, ConfigError, Scene, KEY_LIST};
+use super::keys::{invalid, KEY_LIST};
+use super::values::format_float;
+use super::{ConfigError, Scene};
 use crate::physics;
 
 impl Scene {
