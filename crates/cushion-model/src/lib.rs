@@ -104,6 +104,7 @@ mod gas_law;
 pub mod model;
 mod peaks;
 pub mod physics;
+mod recorder;
 mod resting;
 mod ringing;
 mod ringing_tail;

@@ -46,7 +46,7 @@ use crate::config::{Module, RobotStart, Scene};
 use crate::gas_law::GasLaw;
 use crate::peaks::{rival_window, PeakCandidate};
 use crate::physics::{self, RobotProfile, GRAVITY};
-use crate::trajectory::{EventLogEntry, TrajectoryPoint};
+use crate::trajectory::EventLogEntry;
 use cushion_ode::MAX_EVENTS;
 use events::EventSet;
 pub(crate) use forces::to_point;
@@ -208,12 +208,6 @@ pub struct Model {
     event_set: EventSet,
     pub(crate) metrics: Metrics,
     pub(crate) log: Vec<EventLogEntry>,
-    /// Recorded trajectory points (when asked).
-    pub(crate) record: Option<Vec<TrajectoryPoint>>,
-    pub(crate) sample_interval: Option<f64>,
-    /// Next uniform sample time, `(n_samples + 1) * sample_interval` (no accumulated rounding).
-    pub(crate) next_sample: f64,
-    n_samples: u64,
     pub(crate) early_end: Option<f64>,
     /// The tool's ringing in closed form after an early end (`ringing_tail.rs`).
     pub(crate) ringing_tail: Option<crate::ringing_tail::RingingTail>,
@@ -384,10 +378,6 @@ impl Model {
                 max_p1: f64::NEG_INFINITY,
             },
             log: Vec::new(),
-            record: None,
-            sample_interval: None,
-            next_sample: 0.0,
-            n_samples: 0,
             early_end: None,
             ringing_tail: None,
             ringing_tail_enabled: scene.solver.early_end && scene.solver.ringing_tail,
@@ -440,14 +430,9 @@ impl Model {
         m
     }
 
-    /// Record the trajectory from now on (every step end, every event, and uniform samples).
-    pub(crate) fn start_recording(&mut self, sample_interval: Option<f64>) {
-        let p = self.point_at(0.0, &self.y0.clone());
-        self.record = Some(vec![p]);
-        self.sample_interval = sample_interval.filter(|dt| *dt > 0.0 && dt.is_finite());
-        if let Some(dt) = self.sample_interval {
-            self.next_sample = dt;
-        }
+    /// The regime in force during the step being reported to observers (`on_step`).
+    pub(crate) fn step_regime(&self) -> &Regime {
+        &self.step_regime
     }
 }
 

@@ -24,6 +24,7 @@
 use crate::config::{Module, Scene};
 use crate::model::{to_point, Model};
 use crate::physics;
+use crate::recorder::{Observed, Recorder};
 use crate::summary::{RunStatus, SolverStats, Summary};
 use crate::trajectory::{EventLogEntry, Trajectory};
 use cushion_ode::{Output, SolverOptions, State, Stats, Status, Tolerance};
@@ -80,9 +81,15 @@ struct Outcome {
     stats: Stats,
 }
 
-fn run<const N: usize>(model: &mut Model, opts: &SolverOptions, t_end: f64) -> Outcome {
+fn run<const N: usize>(
+    model: &mut Model,
+    recorder: Option<&mut Recorder>,
+    opts: &SolverOptions,
+    t_end: f64,
+) -> Outcome {
     let y0 = State::<N>::from_column_slice(&model.y0);
-    let sol = cushion_ode::solve(model, 0.0, y0, t_end, opts);
+    let mut system = Observed { model, recorder };
+    let sol = cushion_ode::solve(&mut system, 0.0, y0, t_end, opts);
     Outcome {
         status: sol.status,
         message: sol.message,
@@ -239,25 +246,25 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
 
 fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<EnergyLedger>) {
     let mut model = Model::new(scene);
-    if opts.trajectory {
-        model.start_recording(opts.sample_interval);
-    }
+    let mut recorder = opts
+        .trajectory
+        .then(|| Recorder::new(&model, opts.sample_interval));
     let sopts = solver_options(scene);
     let t_end = scene.t_end;
     let out = match model.layout.n.max(1) {
-        1 => run::<1>(&mut model, &sopts, t_end),
-        2 => run::<2>(&mut model, &sopts, t_end),
-        3 => run::<3>(&mut model, &sopts, t_end),
-        4 => run::<4>(&mut model, &sopts, t_end),
-        5 => run::<5>(&mut model, &sopts, t_end),
-        6 => run::<6>(&mut model, &sopts, t_end),
-        7 => run::<7>(&mut model, &sopts, t_end),
-        8 => run::<8>(&mut model, &sopts, t_end),
-        9 => run::<9>(&mut model, &sopts, t_end),
-        10 => run::<10>(&mut model, &sopts, t_end),
-        11 => run::<11>(&mut model, &sopts, t_end),
-        12 => run::<12>(&mut model, &sopts, t_end),
-        13 => run::<13>(&mut model, &sopts, t_end),
+        1 => run::<1>(&mut model, recorder.as_mut(), &sopts, t_end),
+        2 => run::<2>(&mut model, recorder.as_mut(), &sopts, t_end),
+        3 => run::<3>(&mut model, recorder.as_mut(), &sopts, t_end),
+        4 => run::<4>(&mut model, recorder.as_mut(), &sopts, t_end),
+        5 => run::<5>(&mut model, recorder.as_mut(), &sopts, t_end),
+        6 => run::<6>(&mut model, recorder.as_mut(), &sopts, t_end),
+        7 => run::<7>(&mut model, recorder.as_mut(), &sopts, t_end),
+        8 => run::<8>(&mut model, recorder.as_mut(), &sopts, t_end),
+        9 => run::<9>(&mut model, recorder.as_mut(), &sopts, t_end),
+        10 => run::<10>(&mut model, recorder.as_mut(), &sopts, t_end),
+        11 => run::<11>(&mut model, recorder.as_mut(), &sopts, t_end),
+        12 => run::<12>(&mut model, recorder.as_mut(), &sopts, t_end),
+        13 => run::<13>(&mut model, recorder.as_mut(), &sopts, t_end),
         n => {
             let r = RunResult {
                 summary: Summary::invalid(format!(
@@ -393,9 +400,9 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     // After an early end, the uniform samples up to t_end come from the extrapolation; without
     // uniform samples, a ringing tail is drawn with 16 points per period.
     let mut tail = Vec::new();
-    if let (Some(te), true) = (model.early_end, model.record.is_some()) {
-        let spacing = match (model.sample_interval, &model.ringing_tail) {
-            (Some(dt), _) => Some((dt, (model.next_sample / dt).round() as u64)),
+    if let (Some(te), Some(rec)) = (model.early_end, &recorder) {
+        let spacing = match (rec.sample_interval, &model.ringing_tail) {
+            (Some(dt), _) => Some((dt, (rec.next_sample / dt).round() as u64)),
             (None, Some(r)) => {
                 let w0 = r.pieces.last().map_or(1.0, |p| p.ring.w0);
                 let dt = 2.0 * std::f64::consts::PI / w0 / 16.0;
@@ -416,7 +423,8 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             }
         }
     }
-    let trajectory = model.record.take().map(|mut pts| {
+    let trajectory = recorder.map(|rec| {
+        let mut pts = rec.points;
         pts.extend(tail);
         if model.early_end.is_some() {
             pts.push(to_point(t, &e_end));

@@ -124,9 +124,6 @@ impl Model {
         let seg = *self.robot.current();
         let e = self.eval(t, y, &seg, &self.regime);
         let point = to_point(t, &e);
-        if let Some(rec) = self.record.as_mut() {
-            rec.push(point);
-        }
         self.log.push(EventLogEntry {
             t,
             name: name.to_string(),

@@ -1,7 +1,8 @@
-//! What each accepted step tells the summary: the peaks' samples at its end and inside it,
-//! the recorded trajectory, and the peaks refined at the end of the run (`peaks.rs`).
+//! What each accepted step tells the summary: the peaks' samples at its end and inside it, and
+//! the peaks refined at the end of the run (`peaks.rs`). The trajectory is recorded apart
+//! (`recorder.rs`).
 
-use super::{to_point, Eval, Model, MAX_STATES};
+use super::{Eval, Model, MAX_STATES};
 use crate::peaks::{PeakStep, K, MAX_DYNAMIC, TIE};
 use cushion_ode::{Control, State, Step};
 
@@ -172,23 +173,6 @@ impl Model {
         }
         if self.layout.tool.is_some() && self.s_peak.observe(s_best.1, e1.s, || cand(s_best.0)) {
             self.metrics.max_stroke = s_best.1;
-        }
-        if self.record.is_some() {
-            let mut pts = Vec::new();
-            if let Some(dt) = self.sample_interval {
-                while self.next_sample < t1 {
-                    let ts = self.next_sample;
-                    let e = self.eval(ts, step.at(ts).as_slice(), &seg, &r);
-                    pts.push(to_point(ts, &e));
-                    self.n_samples += 1;
-                    self.next_sample = (self.n_samples + 1) as f64 * dt;
-                }
-            }
-            // the step's end: the same (t1, y1, seg, r) as e1
-            pts.push(to_point(t1, &e1));
-            if let Some(rec) = self.record.as_mut() {
-                rec.extend(pts);
-            }
         }
         // a stick or slip of the tool, or a slip that turns, changes its friction at once
         if self.regime.tool_stuck != r.tool_stuck || self.regime.tool_dir != r.tool_dir {
