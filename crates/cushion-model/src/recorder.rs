@@ -63,52 +63,61 @@ impl Recorder {
 
 /// The model with its optional observers, as the integrator sees it: the physics answers
 /// every question about the system, the observers see every step and event.
-pub(crate) struct Observed<'a> {
-    pub model: &'a mut Model,
-    pub recorder: Option<&'a mut Recorder>,
+pub(crate) struct Observed {
+    pub model: Model,
+    pub recorder: Option<Recorder>,
 }
 
-impl<const N: usize> OdeSystem<N> for Observed<'_> {
+impl<const N: usize> OdeSystem<N> for Observed {
     #[inline]
     fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        OdeSystem::<N>::rhs(&*self.model, t, y)
+        OdeSystem::<N>::rhs(&self.model, t, y)
     }
+    #[inline]
     fn event_count(&self) -> usize {
-        OdeSystem::<N>::event_count(&*self.model)
+        OdeSystem::<N>::event_count(&self.model)
     }
+    #[inline]
     fn events(&self, t: f64, y: &State<N>, g: &mut [f64]) {
-        OdeSystem::<N>::events(&*self.model, t, y, g)
+        OdeSystem::<N>::events(&self.model, t, y, g)
     }
+    #[inline]
     fn event(&self, i: usize, t: f64, y: &State<N>) -> f64 {
-        OdeSystem::<N>::event(&*self.model, i, t, y)
+        OdeSystem::<N>::event(&self.model, i, t, y)
     }
+    #[inline]
     fn event_direction(&self, i: usize) -> Direction {
-        OdeSystem::<N>::event_direction(&*self.model, i)
+        OdeSystem::<N>::event_direction(&self.model, i)
     }
+    #[inline]
     fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
-        OdeSystem::<N>::event_chord_bound(&*self.model, i, t0, t1, dev)
+        OdeSystem::<N>::event_chord_bound(&self.model, i, t0, t1, dev)
     }
+    #[inline]
     fn event_chord_bounds(&self, t0: f64, t1: f64, dev: &State<N>, bounds: &mut [f64]) {
-        OdeSystem::<N>::event_chord_bounds(&*self.model, t0, t1, dev, bounds)
+        OdeSystem::<N>::event_chord_bounds(&self.model, t0, t1, dev, bounds)
     }
+    #[inline]
     fn on_event(&mut self, i: usize, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
-        let action = OdeSystem::<N>::on_event(&mut *self.model, i, t, y, ctl);
-        if let Some(r) = self.recorder.as_deref_mut() {
-            r.take_events(self.model);
+        let action = OdeSystem::<N>::on_event(&mut self.model, i, t, y, ctl);
+        if let Some(r) = self.recorder.as_mut() {
+            r.take_events(&self.model);
         }
         action
     }
+    #[inline]
     fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
-        let action = OdeSystem::<N>::on_time_stop(&mut *self.model, t, y, ctl);
-        if let Some(r) = self.recorder.as_deref_mut() {
-            r.take_events(self.model);
+        let action = OdeSystem::<N>::on_time_stop(&mut self.model, t, y, ctl);
+        if let Some(r) = self.recorder.as_mut() {
+            r.take_events(&self.model);
         }
         action
     }
+    #[inline]
     fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
-        if let Some(r) = self.recorder.as_deref_mut() {
-            r.on_step(self.model, step);
+        if let Some(r) = self.recorder.as_mut() {
+            r.on_step(&self.model, step);
         }
-        OdeSystem::<N>::on_step(&mut *self.model, step, ctl);
+        OdeSystem::<N>::on_step(&mut self.model, step, ctl);
     }
 }

@@ -81,15 +81,9 @@ struct Outcome {
     stats: Stats,
 }
 
-fn run<const N: usize>(
-    model: &mut Model,
-    recorder: Option<&mut Recorder>,
-    opts: &SolverOptions,
-    t_end: f64,
-) -> Outcome {
-    let y0 = State::<N>::from_column_slice(&model.y0);
-    let mut system = Observed { model, recorder };
-    let sol = cushion_ode::solve(&mut system, 0.0, y0, t_end, opts);
+fn run<const N: usize>(system: &mut Observed, opts: &SolverOptions, t_end: f64) -> Outcome {
+    let y0 = State::<N>::from_column_slice(&system.model.y0);
+    let sol = cushion_ode::solve(system, 0.0, y0, t_end, opts);
     Outcome {
         status: sol.status,
         message: sol.message,
@@ -245,26 +239,27 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
 }
 
 fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<EnergyLedger>) {
-    let mut model = Model::new(scene);
-    let mut recorder = opts
+    let model = Model::new(scene);
+    let recorder = opts
         .trajectory
         .then(|| Recorder::new(&model, opts.sample_interval));
+    let mut system = Observed { model, recorder };
     let sopts = solver_options(scene);
     let t_end = scene.t_end;
-    let out = match model.layout.n.max(1) {
-        1 => run::<1>(&mut model, recorder.as_mut(), &sopts, t_end),
-        2 => run::<2>(&mut model, recorder.as_mut(), &sopts, t_end),
-        3 => run::<3>(&mut model, recorder.as_mut(), &sopts, t_end),
-        4 => run::<4>(&mut model, recorder.as_mut(), &sopts, t_end),
-        5 => run::<5>(&mut model, recorder.as_mut(), &sopts, t_end),
-        6 => run::<6>(&mut model, recorder.as_mut(), &sopts, t_end),
-        7 => run::<7>(&mut model, recorder.as_mut(), &sopts, t_end),
-        8 => run::<8>(&mut model, recorder.as_mut(), &sopts, t_end),
-        9 => run::<9>(&mut model, recorder.as_mut(), &sopts, t_end),
-        10 => run::<10>(&mut model, recorder.as_mut(), &sopts, t_end),
-        11 => run::<11>(&mut model, recorder.as_mut(), &sopts, t_end),
-        12 => run::<12>(&mut model, recorder.as_mut(), &sopts, t_end),
-        13 => run::<13>(&mut model, recorder.as_mut(), &sopts, t_end),
+    let out = match system.model.layout.n.max(1) {
+        1 => run::<1>(&mut system, &sopts, t_end),
+        2 => run::<2>(&mut system, &sopts, t_end),
+        3 => run::<3>(&mut system, &sopts, t_end),
+        4 => run::<4>(&mut system, &sopts, t_end),
+        5 => run::<5>(&mut system, &sopts, t_end),
+        6 => run::<6>(&mut system, &sopts, t_end),
+        7 => run::<7>(&mut system, &sopts, t_end),
+        8 => run::<8>(&mut system, &sopts, t_end),
+        9 => run::<9>(&mut system, &sopts, t_end),
+        10 => run::<10>(&mut system, &sopts, t_end),
+        11 => run::<11>(&mut system, &sopts, t_end),
+        12 => run::<12>(&mut system, &sopts, t_end),
+        13 => run::<13>(&mut system, &sopts, t_end),
         n => {
             let r = RunResult {
                 summary: Summary::invalid(format!(
@@ -276,6 +271,10 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             return (r, None);
         }
     };
+    let Observed {
+        mut model,
+        recorder,
+    } = system;
     model.refine_peaks();
     let status = match out.status {
         Status::Success | Status::StoppedByEvent => RunStatus::Ok,
