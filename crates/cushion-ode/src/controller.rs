@@ -1,4 +1,20 @@
-//! Step-size control: Hairer's PI controller for DOPRI5 and his initial step selection.
+//! Step-size control: each method brings the controller that suits it
+//! ([`crate::stepper::Stepper::controller`]): Hairer's PI controller for DOPRI5
+//! ([`PiController`]), the predictive controller of Hairer's RODAS for the Rosenbrock method
+//! ([`PredictiveController`]); and Hairer's initial step selection ([`initial_step`]).
+
+use crate::stepper::StepFailure;
+
+/// What the integration loop asks of a step-size controller.
+pub trait Controller {
+    /// Given the scaled error norm `err` of a step of size `h`, say whether it is accepted and
+    /// which step size comes next.
+    fn next(&mut self, err: f64, h: f64) -> (bool, f64);
+    /// An attempt of size `h` failed before it had an error estimate: the size to retry with.
+    fn after_failure(&mut self, h: f64, failure: StepFailure) -> f64;
+    /// Forget the history (after a handler changed the state or the regime).
+    fn reset(&mut self);
+}
 
 /// `ln(1e-4)`: Hairer's floor and starting value of `facold`.
 const LN_1E_4: f64 = -9.210_340_371_976_184;
@@ -66,6 +82,115 @@ impl PiController {
     pub fn reject_non_finite(&mut self, h: f64) -> f64 {
         self.last_rejected = true;
         h * self.min_ratio
+    }
+}
+
+impl Controller for PiController {
+    #[inline]
+    fn next(&mut self, err: f64, h: f64) -> (bool, f64) {
+        PiController::next(self, err, h)
+    }
+
+    /// Every failure is a non-finite stage for the explicit methods: the largest shrink.
+    #[inline]
+    fn after_failure(&mut self, h: f64, _failure: StepFailure) -> f64 {
+        self.reject_non_finite(h)
+    }
+
+    #[inline]
+    fn reset(&mut self) {
+        PiController::reset(self)
+    }
+}
+
+/// The controller of Hairer's RODAS (Hairer & Wanner, *Solving ODEs II*, Sec. IV.8 and VI.4;
+/// the code RODAS): the standard controller `h_new = h / fac`, `fac = err^(1/q) / safety`
+/// (`q` = 4, the order of the propagated solution, so that `err ~ h^q`), and on accepted
+/// steps Gustafsson's predictive modification (K. Gustafsson, "Control-theoretic techniques
+/// for stepsize selection in implicit Runge-Kutta methods", ACM TOMS 20 (1994) 496-517):
+/// `fac_pred = (h_acc / h) (err^2 / err_acc)^(1/q) / safety` from the previous accepted step
+/// `h_acc`, `err_acc = max(err, 1e-2)`, and the smaller of the two steps is taken. It reduces
+/// the step before the error does, where the error of an implicit method grows quickly
+/// (a fast transient starting, a step held at a stiff component's accuracy limit), and so
+/// saves rejections, each of which costs a factorization. The ratio `h_new / h` stays within
+/// `[min_ratio, max_ratio]` (RODAS: 0.2 and 6), with no growth on the step right after a
+/// rejection; a singular matrix halves the step (as RODAS does), a non-finite stage shrinks it
+/// by `min_ratio`.
+#[derive(Clone, Copy, Debug)]
+pub struct PredictiveController {
+    pub safety: f64,
+    pub min_ratio: f64,
+    pub max_ratio: f64,
+    /// `1 / q`.
+    expo: f64,
+    /// The last accepted step and its error (floored at 1e-2), once there is one.
+    h_acc: f64,
+    err_acc: f64,
+    has_history: bool,
+    last_rejected: bool,
+}
+
+impl PredictiveController {
+    /// For a method whose error estimate is `O(h^order)`.
+    pub fn new(order: u32, safety: f64, min_ratio: f64, max_ratio: f64) -> Self {
+        PredictiveController {
+            safety,
+            min_ratio,
+            max_ratio,
+            expo: 1.0 / order as f64,
+            h_acc: 0.0,
+            err_acc: 0.0,
+            has_history: false,
+            last_rejected: false,
+        }
+    }
+
+    /// RODAS's settings for its order-4 method: safety 0.9, ratio within `[0.2, 6]`.
+    pub fn rodas() -> Self {
+        Self::new(4, 0.9, 0.2, 6.0)
+    }
+
+    #[inline]
+    fn clamp_fac(&self, fac: f64) -> f64 {
+        fac.clamp(1.0 / self.max_ratio, 1.0 / self.min_ratio)
+    }
+}
+
+impl Controller for PredictiveController {
+    fn next(&mut self, err: f64, h: f64) -> (bool, f64) {
+        let mut fac = self.clamp_fac(err.powf(self.expo) / self.safety);
+        if err <= 1.0 {
+            if self.has_history {
+                let pred =
+                    (self.h_acc / h) * (err * err / self.err_acc).powf(self.expo) / self.safety;
+                fac = fac.max(self.clamp_fac(pred));
+            }
+            self.has_history = true;
+            self.h_acc = h;
+            self.err_acc = err.max(1e-2);
+            let mut h_new = h / fac;
+            if self.last_rejected {
+                h_new = h_new.min(h);
+            }
+            self.last_rejected = false;
+            (true, h_new)
+        } else {
+            self.last_rejected = true;
+            (false, h / fac)
+        }
+    }
+
+    fn after_failure(&mut self, h: f64, failure: StepFailure) -> f64 {
+        self.last_rejected = true;
+        match failure {
+            StepFailure::SingularMatrix => 0.5 * h,
+            StepFailure::NonFinite => h * self.min_ratio,
+        }
+    }
+
+    fn reset(&mut self) {
+        self.has_history = false;
+        self.last_rejected = false;
     }
 }
 
@@ -151,6 +276,42 @@ mod tests {
         let (ok, h2) = c.next(1e-12, h);
         assert!(ok);
         assert_eq!(h2, h, "no growth on the step after a rejection");
+    }
+
+    #[test]
+    fn predictive_controller_matches_rodas_formulas() {
+        let mut c = PredictiveController::rodas();
+        // First accepted step: the standard controller alone.
+        let (ok, h1) = Controller::next(&mut c, 0.5, 1e-3);
+        assert!(ok);
+        let want = 1e-3 / (0.5f64.powf(0.25) / 0.9).clamp(1.0 / 6.0, 5.0);
+        assert!((h1 - want).abs() <= 1e-15 * want, "{h1} vs {want}");
+        // Second: the larger reduction of the two (Gustafsson's prediction wins here, the
+        // error having grown from 0.5 to 0.8).
+        let (ok, h2) = Controller::next(&mut c, 0.8, h1);
+        assert!(ok);
+        let std = (0.8f64.powf(0.25) / 0.9).clamp(1.0 / 6.0, 5.0);
+        let pred = ((1e-3 / h1) * (0.64f64 / 0.5).powf(0.25) / 0.9).clamp(1.0 / 6.0, 5.0);
+        assert!(pred > std);
+        let want = h1 / pred;
+        assert!((h2 - want).abs() <= 1e-15 * want, "{h2} vs {want}");
+        // Tiny errors: at most six-fold growth.
+        let mut c = PredictiveController::rodas();
+        let (_, h) = Controller::next(&mut c, 1e-12, 1.0);
+        assert!((h - 6.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn predictive_controller_rejects_shrinks_and_does_not_grow_after_a_rejection() {
+        let mut c = PredictiveController::rodas();
+        let (ok, h) = Controller::next(&mut c, 1e8, 1.0);
+        assert!(!ok);
+        assert!((h - 0.2).abs() < 1e-12, "at most five-fold: {h}");
+        let (ok, h2) = Controller::next(&mut c, 1e-10, h);
+        assert!(ok);
+        assert_eq!(h2, h, "no growth right after a rejection");
+        assert_eq!(c.after_failure(1.0, StepFailure::SingularMatrix), 0.5);
+        assert!((c.after_failure(1.0, StepFailure::NonFinite) - 0.2).abs() < 1e-15);
     }
 
     #[test]

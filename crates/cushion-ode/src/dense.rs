@@ -1,6 +1,7 @@
-//! Dense output of one step: Hairer's continuous extension of DOPRI5 (order 4), or the cubic
-//! Hermite interpolant for methods without their own. Built from the stages already computed,
-//! no extra right-hand-side evaluations.
+//! Dense output of one step: Hairer's continuous extension of DOPRI5 (order 4), that of RODAS
+//! (order 3, [`DenseOutput::from_coefficients`]), or the cubic Hermite interpolant for methods
+//! without their own. Built from the stages already computed, no extra right-hand-side
+//! evaluations.
 
 use crate::State;
 
@@ -35,6 +36,21 @@ impl<const N: usize> DenseOutput<N> {
             t0,
             h,
             r1: *y0,
+            r2,
+            r3,
+            r4,
+            r5,
+        }
+    }
+
+    /// From the coefficients of the form above directly: a method's own continuous extension
+    /// written in it (RODAS's: `r1 = y0`, `r2 = y1 - y0`, `r3`, `r4` from its stages,
+    /// `r5 = 0`).
+    pub fn from_coefficients(t0: f64, h: f64, [r1, r2, r3, r4, r5]: [State<N>; 5]) -> Self {
+        DenseOutput {
+            t0,
+            h,
+            r1,
             r2,
             r3,
             r4,

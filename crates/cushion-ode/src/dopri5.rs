@@ -8,8 +8,10 @@
 //! zero coefficients left out, exactly as `ExplicitRk` skips them. The tests at the bottom check
 //! the constants against the tableau and the results against `ExplicitRk`.
 
+use crate::controller::PiController;
 use crate::dense::DenseOutput;
-use crate::stepper::{Attempt, Stepper};
+use crate::options::SolverOptions;
+use crate::stepper::{Attempt, StepFailure, Stepper};
 use crate::system::OdeSystem;
 use crate::State;
 
@@ -118,6 +120,8 @@ impl<const N: usize> Default for Dopri5<N> {
 }
 
 impl<const N: usize> Stepper<N> for Dopri5<N> {
+    type Controller = PiController;
+
     fn order(&self) -> u32 {
         5
     }
@@ -126,8 +130,9 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         true
     }
 
-    fn rhs_evals_per_step(&self) -> u64 {
-        6 // stages 2..6 plus f1
+    /// Hairer's PI controller with the settings' constants (DOPRI5's by default).
+    fn controller(&self, opts: &SolverOptions) -> PiController {
+        PiController::new(5, opts.safety, opts.beta, opts.min_ratio, opts.max_ratio)
     }
 
     #[inline]
@@ -138,7 +143,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         y: &State<N>,
         f0: &State<N>,
         h: f64,
-    ) -> Attempt<N> {
+    ) -> Result<Attempt<N>, StepFailure> {
         let k1 = f0;
         let k2 = sys.rhs(t + C2 * h, &add_scaled(y, h, [(A21, k1)]));
         let k3 = sys.rhs(t + C3 * h, &add_scaled(y, h, [(A31, k1), (A32, &k2)]));
@@ -172,11 +177,11 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         );
         self.k = [k2, k3, k4, k5, k6];
         self.stage6_input = y6;
-        Attempt {
+        Ok(Attempt {
             y1,
-            f1,
+            f1: Some(f1),
             err: Some(err),
-        }
+        })
     }
 
     fn dense(
@@ -184,10 +189,13 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         t: f64,
         h: f64,
         y0: &State<N>,
-        y1: &State<N>,
         f0: &State<N>,
-        f1: &State<N>,
+        a: &Attempt<N>,
     ) -> DenseOutput<N> {
+        let (y1, f1) = (
+            &a.y1,
+            a.f1.as_ref().expect("a DOPRI5 attempt carries f1 (FSAL)"),
+        );
         let [_, k3, k4, k5, k6] = &self.k;
         let r5 = scaled_sum(
             h,
@@ -196,16 +204,16 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         DenseOutput::new(t, h, y0, y1, f0, f1, r5)
     }
 
-    fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64> {
+    fn stiffness_estimate(&self, h: f64, a: &Attempt<N>) -> Option<f64> {
         // Two evaluations at t + h: f(stage 6 input) and f(y1) (Hairer, DOPRI5).
-        crate::stiffness::h_lambda(h, y1, f1, &self.stage6_input, &self.k[4])
+        crate::stiffness::h_lambda(h, &a.y1, a.f1.as_ref()?, &self.stage6_input, &self.k[4])
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stepper::ExplicitRk;
+    use crate::stepper::{Counted, ExplicitRk};
     use crate::tableau::DORMAND_PRINCE_54 as T;
     use crate::test_models::arenstorf::{initial_state, Arenstorf};
     use crate::test_models::van_der_pol::VanDerPol;
@@ -250,18 +258,19 @@ mod tests {
     fn agrees_with_generic<S: OdeSystem<N>, const N: usize>(sys: &S, y: State<N>, hs: &[f64]) {
         let mut fast = Dopri5::<N>::new();
         let mut generic = ExplicitRk::<N>::new(&T);
+        let (sys_a, sys_b) = (Counted::new(sys), Counted::new(sys));
         let t = 0.3;
         let f0 = sys.rhs(t, &y);
         for &h in hs {
-            let a = fast.step(sys, t, &y, &f0, h);
-            let b = generic.step(sys, t, &y, &f0, h);
+            let a = fast.step(&sys_a, t, &y, &f0, h).unwrap();
+            let b = generic.step(&sys_b, t, &y, &f0, h).unwrap();
             assert_eq!(bits(&a.y1), bits(&b.y1), "y1, h = {h}");
-            assert_eq!(bits(&a.f1), bits(&b.f1), "f1, h = {h}");
+            assert_eq!(bits(&a.f1.unwrap()), bits(&b.f1.unwrap()), "f1, h = {h}");
             assert_eq!(bits(&a.err.unwrap()), bits(&b.err.unwrap()), "err, h = {h}");
             // The dense output's own step may differ from h in the last bits (t1 - t).
             let hd = (t + h) - t;
-            let da = fast.dense(t, hd, &y, &a.y1, &f0, &a.f1);
-            let db = generic.dense(t, hd, &y, &b.y1, &f0, &b.f1);
+            let da = fast.dense(t, hd, &y, &f0, &a);
+            let db = generic.dense(t, hd, &y, &f0, &b);
             for theta in [0.0, 0.2, 0.5, 0.77, 1.0] {
                 let tt = t + theta * hd;
                 assert_eq!(
@@ -271,8 +280,8 @@ mod tests {
                 );
             }
             let (sa, sb) = (
-                fast.stiffness_estimate(h, &a.y1, &a.f1),
-                generic.stiffness_estimate(h, &b.y1, &b.f1),
+                fast.stiffness_estimate(h, &a),
+                generic.stiffness_estimate(h, &b),
             );
             assert_eq!(
                 sa.map(f64::to_bits),
@@ -280,7 +289,9 @@ mod tests {
                 "stiffness, h = {h}"
             );
         }
-        assert_eq!(fast.rhs_evals_per_step(), generic.rhs_evals_per_step());
+        // Six evaluations an attempt (stages 2..6 and f1), counted as they are made.
+        assert_eq!(sys_a.evals(), sys_b.evals());
+        assert_eq!(sys_a.evals(), 6 * hs.len() as u64);
         assert_eq!(fast.order(), generic.order());
     }
 

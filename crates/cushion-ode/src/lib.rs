@@ -1,6 +1,7 @@
 //! `cushion-ode`: an adaptive Dormand–Prince 5(4) integrator with dense output, event
-//! detection and location, time stops and Hairer's stiffness test, plus fixed-step classical
-//! RK4 and explicit Euler behind the same interface.
+//! detection and location, time stops and Hairer's stiffness test; an adaptive, L-stable
+//! Rosenbrock method (Hairer and Wanner's RODAS) for stiff problems; and fixed-step classical
+//! RK4 and explicit Euler; all behind the same interface and the same loop.
 //!
 //! It knows ODEs and nothing else. The shape follows SciPy's `integrate/_ivp` and
 //! DifferentialEquations.jl: a system ([`OdeSystem`]) is the problem, [`SolverOptions`] picks the
@@ -8,8 +9,10 @@
 //! the recorded trajectory, the event log and the statistics. Stepping ([`stepper`]), dense
 //! output ([`dense`]), step-size control ([`controller`]), events ([`events`]) and the stiffness
 //! test ([`stiffness`]) each live in their own file; the Butcher tableaus are data
-//! ([`tableau`]). DOPRI5, the method that runs, has its own stepper with the coefficients as
+//! ([`tableau`]). DOPRI5, the default method, has its own stepper with the coefficients as
 //! constants ([`dopri5`]); it gives the same numbers as the generic one reading its tableau.
+//! The Rosenbrock method ([`rodas`]) factorizes `I / (h gamma) - J` on the stack like the
+//! state (a fixed-size `nalgebra::SMatrix` and an LU with partial pivoting).
 //!
 //! The state is a fixed-size, stack-allocated `nalgebra::SVector<f64, N>`; nothing is allocated
 //! on the heap inside the step loop (the event log and the recorded output grow only when an
@@ -23,8 +26,11 @@ pub mod controller;
 pub mod dense;
 pub mod dopri5;
 pub mod events;
+pub mod jacobian;
+mod lu;
 mod norm;
 pub mod options;
+pub mod rodas;
 pub mod solution;
 mod solve;
 pub mod stepper;
@@ -41,3 +47,6 @@ pub use system::{Control, Direction, EventAction, OdeSystem, Step, MAX_EVENTS};
 
 /// The state vector: `N` numbers on the stack.
 pub type State<const N: usize> = nalgebra::SVector<f64, N>;
+
+/// An `N` by `N` matrix on the stack (a Jacobian `df/dy`).
+pub type Matrix<const N: usize> = nalgebra::SMatrix<f64, N, N>;

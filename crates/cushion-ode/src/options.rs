@@ -8,6 +8,10 @@ use crate::State;
 pub enum Method {
     /// Adaptive Dormand–Prince 5(4) (Hairer's DOPRI5): FSAL, PI control, 4th-order dense output.
     Dp5,
+    /// Adaptive Rosenbrock 4(3) (Hairer and Wanner's RODAS), L-stable, for stiff problems:
+    /// Jacobian (the system's or by finite differences), predictive control, 3rd-order dense
+    /// output.
+    Rodas,
     /// Classical 4th-order Runge–Kutta with a fixed step `SolverOptions::fixed_step`.
     Rk4,
     /// Explicit Euler with a fixed step `SolverOptions::fixed_step`.
@@ -15,10 +19,11 @@ pub enum Method {
 }
 
 impl Method {
-    /// The name users type (`dp5`, `rk4`, `euler`).
+    /// The name users type (`dp5`, `rodas`, `rk4`, `euler`).
     pub fn name(self) -> &'static str {
         match self {
             Method::Dp5 => "dp5",
+            Method::Rodas => "rodas",
             Method::Rk4 => "rk4",
             Method::Euler => "euler",
         }
@@ -28,6 +33,7 @@ impl Method {
     pub fn from_name(s: &str) -> Option<Method> {
         match s {
             "dp5" => Some(Method::Dp5),
+            "rodas" => Some(Method::Rodas),
             "rk4" => Some(Method::Rk4),
             "euler" => Some(Method::Euler),
             _ => None,
@@ -36,7 +42,7 @@ impl Method {
 
     /// Whether the step size adapts to an error estimate.
     pub fn is_adaptive(self) -> bool {
-        matches!(self, Method::Dp5)
+        matches!(self, Method::Dp5 | Method::Rodas)
     }
 }
 
@@ -101,14 +107,16 @@ pub struct SolverOptions {
     pub fixed_step: f64,
     /// Most steps (accepted and rejected) before giving up with `MaxSteps`.
     pub max_steps: u64,
-    /// Safety factor of the step controller (Hairer: 0.9).
+    /// Safety factor of DOPRI5's PI step controller (Hairer: 0.9). The controller comes with
+    /// the method: `Rodas` has RODAS's own (`controller::PredictiveController::rodas`), and
+    /// these four settings are DOPRI5's.
     pub safety: f64,
     /// PI controller's `beta` (Hairer: 0.04).
     pub beta: f64,
     /// Bounds of the step ratio `h_new / h` (Hairer: 0.2 and 10).
     pub min_ratio: f64,
     pub max_ratio: f64,
-    /// Hairer's stiffness test.
+    /// Hairer's stiffness test (DOPRI5 only: the other methods report no estimate).
     pub stiffness: StiffnessAction,
     /// Times where `f` is not smooth: stepped onto exactly, never across.
     pub time_stops: Vec<f64>,

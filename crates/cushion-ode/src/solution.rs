@@ -33,10 +33,18 @@ impl Status {
 pub struct Stats {
     /// Accepted steps.
     pub steps: u64,
-    /// Rejected steps (error too large, or a non-finite stage).
+    /// Rejected steps (error too large, a non-finite stage, or a failed solve).
     pub rejected: u64,
-    /// Right-hand-side evaluations.
+    /// Right-hand-side evaluations, counted as they are made: those of the steps, of the
+    /// initial step selection, of restarts, and of finite-difference Jacobians.
     pub rhs_evals: u64,
+    /// Jacobians `df/dy` evaluated, analytic or by finite differences (implicit method only).
+    pub jacobian_evals: u64,
+    /// LU factorizations of the iteration matrix (implicit method only).
+    pub lu_decompositions: u64,
+    /// Attempts that failed in the linear algebra: a singular iteration matrix (or, for a
+    /// Newton-based method, Newton not converging). Each is also a rejected step.
+    pub failed_solves: u64,
     /// Events handled (crossings located), not counting time stops.
     pub events: u64,
     /// Time stops stepped onto.

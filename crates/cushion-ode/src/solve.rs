@@ -1,14 +1,15 @@
 //! The integration loop: step, control, events, time stops, output. It orchestrates; each of
 //! those ideas lives in its own file.
 
-use crate::controller::{initial_step, PiController};
+use crate::controller::{initial_step, Controller};
 use crate::dense::DenseOutput;
 use crate::dopri5::Dopri5;
 use crate::events::EventScan;
 use crate::norm::Weights;
 use crate::options::{Method, Output, SolverOptions, StiffnessAction};
+use crate::rodas::Rodas;
 use crate::solution::{Solution, Stats, Status};
-use crate::stepper::{ExplicitRk, Stepper};
+use crate::stepper::{Attempt, Counted, ExplicitRk, StepFailure, Stepper};
 use crate::stiffness::StiffnessDetector;
 use crate::system::{Control, EventAction, OdeSystem, Step};
 use crate::tableau::{CLASSICAL_RK4, EXPLICIT_EULER};
@@ -27,9 +28,18 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     match opts.method {
         // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
         Method::Dp5 => integration.run(&mut Dopri5::<N>::new()),
+        Method::Rodas => integration.run(&mut Rodas::<N>::new()),
         Method::Rk4 => integration.run(&mut ExplicitRk::<N>::new(&CLASSICAL_RK4)),
         Method::Euler => integration.run(&mut ExplicitRk::<N>::new(&EXPLICIT_EULER)),
     }
+}
+
+/// Whether every number of an attempt is finite.
+#[inline]
+fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
+    a.y1.iter().all(|v| v.is_finite())
+        && a.f1.is_none_or(|f| f.iter().all(|v| v.is_finite()))
+        && a.err.is_none_or(|e| e.iter().all(|v| v.is_finite()))
 }
 
 struct Integration<'a, S, const N: usize> {
@@ -86,10 +96,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         }
     }
 
-    fn finish(self, status: Status, message: impl Into<String>) -> Solution<N> {
+    fn finish(self, status: Status, message: String) -> Solution<N> {
         Solution {
             status,
-            message: message.into(),
+            message,
             t: self.t,
             y: self.y,
             ts: self.ts,
@@ -145,8 +155,15 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     }
 
     fn run<M: Stepper<N>>(mut self, stepper: &mut M) -> Solution<N> {
+        let (status, message) = self.integrate(stepper);
+        stepper.add_counts(&mut self.stats);
+        self.finish(status, message)
+    }
+
+    /// The loop itself; returns how it ended and a message (empty when all went well).
+    fn integrate<M: Stepper<N>>(&mut self, stepper: &mut M) -> (Status, String) {
         if let Err(msg) = self.opts.check(self.t, &self.y, self.t_end, self.n_events) {
-            return self.finish(Status::InvalidInput, msg);
+            return (Status::InvalidInput, msg);
         }
         let (y0, t0) = (self.y, self.t);
         self.f = self.rhs(t0, &y0);
@@ -157,25 +174,19 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.record_output(None, t0, &y0);
         }
         if !self.f.iter().all(|v| v.is_finite()) {
-            return self.finish(
+            return (
                 Status::NonFinite,
                 format!("f(t0, y0) is not finite at t = {t0}"),
             );
         }
         self.events.reset(&*self.sys, t0, &y0);
         if self.t_end == t0 {
-            return self.finish(Status::Success, "");
+            return (Status::Success, String::new());
         }
 
         let adaptive = stepper.is_adaptive();
         let h_max = self.opts.h_max.min(self.t_end - t0);
-        let mut controller = PiController::new(
-            stepper.order(),
-            self.opts.safety,
-            self.opts.beta,
-            self.opts.min_ratio,
-            self.opts.max_ratio,
-        );
+        let mut controller = stepper.controller(self.opts);
         let mut stiffness = StiffnessDetector::default();
         let mut h = if !adaptive {
             self.opts.fixed_step
@@ -193,7 +204,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     "step limit {} reached at t = {}",
                     self.opts.max_steps, self.t
                 );
-                return self.finish(Status::MaxSteps, msg);
+                return (Status::MaxSteps, msg);
             }
             // The next point the step must land on exactly.
             let next_stop = self
@@ -214,41 +225,56 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             if 0.1 * h.abs() <= self.t.abs() * f64::EPSILON || h <= 0.0 {
                 let msg = format!("step size too small: h = {h:e} at t = {}", self.t);
-                return self.finish(Status::StepTooSmall, msg);
+                return (Status::StepTooSmall, msg);
             }
 
             let (t, y, f0) = (self.t, self.y, self.f);
-            let attempt = stepper.step(&*self.sys, t, &y, &f0, h);
-            self.stats.rhs_evals += stepper.rhs_evals_per_step();
-            let finite = attempt.y1.iter().all(|v| v.is_finite())
-                && attempt.f1.iter().all(|v| v.is_finite())
-                && attempt.err.is_none_or(|e| e.iter().all(|v| v.is_finite()));
-            if !finite {
-                if !adaptive {
-                    let msg =
-                        format!("non-finite state in the step from t = {t} (fixed step {h:e})");
-                    return self.finish(Status::NonFinite, msg);
+            let counted = Counted::new(&*self.sys);
+            let outcome = stepper.step(&counted, t, &y, &f0, h);
+            self.stats.rhs_evals += counted.evals();
+            let attempt = match outcome {
+                Ok(a) if is_finite(&a) => a,
+                failed => {
+                    let failure = match failed {
+                        Err(failure) => failure,
+                        Ok(_) => StepFailure::NonFinite,
+                    };
+                    if !adaptive {
+                        let msg = match failure {
+                            StepFailure::NonFinite => format!(
+                                "non-finite state in the step from t = {t} (fixed step {h:e})"
+                            ),
+                            other => format!("{other} in the step from t = {t} (fixed step {h:e})"),
+                        };
+                        return (Status::NonFinite, msg);
+                    }
+                    self.stats.rejected += 1;
+                    if failure != StepFailure::NonFinite {
+                        self.stats.failed_solves += 1;
+                    }
+                    stepper.rejected();
+                    h = controller.after_failure(h, failure);
+                    continue;
                 }
-                self.stats.rejected += 1;
-                h = controller.reject_non_finite(h);
-                continue;
-            }
+            };
             let mut h_new = h;
             if let Some(err) = &attempt.err {
                 let en = self.weights.error_norm(err, &y, &attempt.y1);
                 let (accepted, hn) = controller.next(en, h);
                 if !accepted {
                     self.stats.rejected += 1;
+                    stepper.rejected();
                     h = hn;
                     continue;
                 }
                 h_new = hn;
             }
             self.stats.steps += 1;
+            stepper.accepted();
 
             // Stiffness test.
             if self.opts.stiffness != StiffnessAction::Off {
-                if let Some(hl) = stepper.stiffness_estimate(h, &attempt.y1, &attempt.f1) {
+                if let Some(hl) = stepper.stiffness_estimate(h, &attempt) {
                     if let Some(since) = stiffness.observe(t, hl) {
                         if !self.stats.stiff {
                             self.stats.stiff = true;
@@ -262,14 +288,14 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                                 crate::stiffness::THRESHOLD,
                                 crate::stiffness::STIFF_STEPS
                             );
-                            return self.finish(Status::Stiff, msg);
+                            return (Status::Stiff, msg);
                         }
                     }
                 }
             }
 
             let t1 = if landing { next_stop } else { t + h };
-            let dense = stepper.dense(t, t1 - t, &y, &attempt.y1, &f0, &attempt.f1);
+            let dense = stepper.dense(t, t1 - t, &y, &f0, &attempt);
 
             // Events inside (t, t1].
             let (t_cut, y_cut, action) = self.events.scan(
@@ -305,12 +331,13 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.take_new_stops(&mut ctl);
 
             if action == EventAction::Stop || ctl.stop_requested {
-                return self.finish(Status::StoppedByEvent, "");
+                return (Status::StoppedByEvent, String::new());
             }
             if cut {
                 // State or regime changed: evaluate f anew and select the step size anew.
+                stepper.restart();
                 if !self.restart_at(t_new, &y_new) {
-                    return self.finish(
+                    return (
                         Status::NonFinite,
                         format!("f is not finite after the event at t = {t_new}"),
                     );
@@ -321,12 +348,11 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 }
                 continue;
             }
-            self.f = attempt.f1;
             h = h_new;
 
             if landing {
                 if t_new >= self.t_end {
-                    return self.finish(Status::Success, "");
+                    return (Status::Success, String::new());
                 }
                 // A time stop: let the system switch regime, then restart f.
                 self.stops.remove(0);
@@ -335,15 +361,31 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 self.y = y_new;
                 self.take_new_stops(&mut ctl);
                 if action == EventAction::Stop || ctl.stop_requested {
-                    return self.finish(Status::StoppedByEvent, "");
+                    return (Status::StoppedByEvent, String::new());
                 }
+                stepper.restart();
                 if !self.restart_at(t_new, &y_new) {
-                    return self.finish(
+                    return (
                         Status::NonFinite,
                         format!("f is not finite at the time stop t = {t_new}"),
                     );
                 }
+                continue;
             }
+            // The next step's first slope: the method's last stage (FSAL), or evaluated here.
+            self.f = match attempt.f1 {
+                Some(f1) => f1,
+                None => {
+                    let f1 = self.rhs(t_new, &y_new);
+                    if !f1.iter().all(|v| v.is_finite()) {
+                        return (
+                            Status::NonFinite,
+                            format!("f is not finite at the accepted state at t = {t_new}"),
+                        );
+                    }
+                    f1
+                }
+            };
         }
     }
 

@@ -1,31 +1,66 @@
-//! One step of a method. [`ExplicitRk`] reads any [`Tableau`]; an implicit method will be
-//! another [`Stepper`] behind the same loop in `solve.rs`.
+//! One step of a method, behind one trait the loop in `solve.rs` drives: the explicit
+//! Runge–Kutta methods ([`ExplicitRk`] reading any [`Tableau`], and [`crate::dopri5::Dopri5`])
+//! and the Rosenbrock method ([`crate::rodas::Rodas`]).
 
+use crate::controller::{Controller, PiController};
 use crate::dense::DenseOutput;
+use crate::options::SolverOptions;
+use crate::solution::Stats;
 use crate::system::OdeSystem;
 use crate::tableau::{Tableau, MAX_STAGES};
-use crate::State;
+use crate::{Matrix, State};
+use std::cell::Cell;
 
 /// One attempted step from `(t, y)` with slope `f0` and size `h`.
 #[derive(Clone, Copy, Debug)]
 pub struct Attempt<const N: usize> {
     /// Proposed state at `t + h`.
     pub y1: State<N>,
-    /// `f(t + h, y1)` (FSAL: the next step's first stage).
-    pub f1: State<N>,
+    /// `f(t + h, y1)` when the method evaluated it (FSAL: the next step's first stage); `None`
+    /// when it did not, and the loop evaluates it once the step is accepted and not cut.
+    pub f1: Option<State<N>>,
     /// Local error estimate (unscaled), when the method has one.
     pub err: Option<State<N>>,
 }
 
+/// Why an attempt produced no step. The loop retries it smaller (an adaptive method) and
+/// counts it as rejected.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StepFailure {
+    /// A stage, the new state or the error estimate is not finite (a trial stage left the
+    /// domain of `f`). Found by the loop from the attempt's numbers.
+    NonFinite,
+    /// The iteration matrix (`I / (h gamma) - J` for a Rosenbrock method) is singular.
+    SingularMatrix,
+}
+
+impl std::fmt::Display for StepFailure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            StepFailure::NonFinite => "a non-finite stage",
+            StepFailure::SingularMatrix => "a singular iteration matrix",
+        })
+    }
+}
+
 /// A one-step method.
+///
+/// The loop calls [`Stepper::step`] for each attempt and tells the method what became of it:
+/// [`Stepper::accepted`], [`Stepper::rejected`] (error too large, or a failure), and
+/// [`Stepper::restart`] when a handler changed the state or the regime (an event's `Restart`,
+/// a time stop). A method that caches something of its starting point (a Jacobian, a
+/// factorization) drops it there.
 pub trait Stepper<const N: usize> {
-    /// Order used by the step-size controller (of the propagated solution).
+    /// The step-size controller that suits the method.
+    type Controller: Controller;
+
+    /// Order of the propagated solution (used by the initial step selection).
     fn order(&self) -> u32;
     /// Whether `err` is estimated (adaptive step size).
     fn is_adaptive(&self) -> bool;
-    /// Right-hand-side evaluations one attempt costs (including `f1`).
-    fn rhs_evals_per_step(&self) -> u64;
-    /// Attempt a step.
+    /// The method's step-size controller, from the settings.
+    fn controller(&self, opts: &SolverOptions) -> Self::Controller;
+    /// Attempt a step. Every evaluation of `f` goes through `sys` (the loop counts them there).
     fn step<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
@@ -33,19 +68,66 @@ pub trait Stepper<const N: usize> {
         y: &State<N>,
         f0: &State<N>,
         h: f64,
-    ) -> Attempt<N>;
-    /// Dense output of the last attempt (valid once it is accepted).
-    fn dense(
-        &self,
-        t: f64,
-        h: f64,
-        y0: &State<N>,
-        y1: &State<N>,
-        f0: &State<N>,
-        f1: &State<N>,
-    ) -> DenseOutput<N>;
-    /// Hairer's stiffness quotient `h * |lambda|` estimate of the last attempt, if the method has one.
-    fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64>;
+    ) -> Result<Attempt<N>, StepFailure>;
+    /// Dense output of the last attempt on `[t, t + h]` (valid once it is accepted).
+    fn dense(&self, t: f64, h: f64, y0: &State<N>, f0: &State<N>, a: &Attempt<N>)
+        -> DenseOutput<N>;
+    /// Hairer's stiffness quotient `h * |lambda|` estimated from the last attempt, if the
+    /// method has one.
+    fn stiffness_estimate(&self, h: f64, a: &Attempt<N>) -> Option<f64>;
+    /// The last attempt was accepted: the next starts from a new point.
+    #[inline]
+    fn accepted(&mut self) {}
+    /// The last attempt was rejected or failed: the next starts from the same point.
+    #[inline]
+    fn rejected(&mut self) {}
+    /// A handler changed the state or the regime of `f`: nothing cached still holds.
+    #[inline]
+    fn restart(&mut self) {}
+    /// Add the method's own counts (Jacobians, factorizations) to `stats`.
+    #[inline]
+    fn add_counts(&self, _stats: &mut Stats) {}
+}
+
+/// The system as a step sees it: `f` counted as it is evaluated, the Jacobian and `df/dt`
+/// passed through. Only for the inside of a step: it has no events.
+pub(crate) struct Counted<'a, S> {
+    sys: &'a S,
+    evals: Cell<u64>,
+}
+
+impl<'a, S> Counted<'a, S> {
+    #[inline]
+    pub fn new(sys: &'a S) -> Self {
+        Counted {
+            sys,
+            evals: Cell::new(0),
+        }
+    }
+
+    /// Evaluations of `f` so far.
+    #[inline]
+    pub fn evals(&self) -> u64 {
+        self.evals.get()
+    }
+}
+
+impl<S: OdeSystem<N>, const N: usize> OdeSystem<N> for Counted<'_, S> {
+    #[inline(always)]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        self.evals.set(self.evals.get() + 1);
+        self.sys.rhs(t, y)
+    }
+
+    #[inline]
+    fn jacobian(&self, t: f64, y: &State<N>) -> Option<Matrix<N>> {
+        self.sys.jacobian(t, y)
+    }
+
+    #[inline]
+    fn time_derivative(&self, t: f64, y: &State<N>) -> Option<State<N>> {
+        self.sys.time_derivative(t, y)
+    }
 }
 
 /// An explicit Runge–Kutta method given by its tableau. Stages live on the stack.
@@ -67,6 +149,8 @@ impl<const N: usize> ExplicitRk<N> {
 }
 
 impl<const N: usize> Stepper<N> for ExplicitRk<N> {
+    type Controller = PiController;
+
     fn order(&self) -> u32 {
         self.tab.order
     }
@@ -75,8 +159,14 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
         !self.tab.e.is_empty()
     }
 
-    fn rhs_evals_per_step(&self) -> u64 {
-        self.tab.c.len() as u64 // stages 2..s plus f1
+    fn controller(&self, opts: &SolverOptions) -> PiController {
+        PiController::new(
+            self.tab.order,
+            opts.safety,
+            opts.beta,
+            opts.min_ratio,
+            opts.max_ratio,
+        )
     }
 
     #[inline]
@@ -87,7 +177,7 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
         y: &State<N>,
         f0: &State<N>,
         h: f64,
-    ) -> Attempt<N> {
+    ) -> Result<Attempt<N>, StepFailure> {
         let tab = self.tab;
         let s = tab.c.len();
         self.k[0] = *f0;
@@ -120,7 +210,11 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
             }
             Some(e)
         };
-        Attempt { y1, f1, err }
+        Ok(Attempt {
+            y1,
+            f1: Some(f1),
+            err,
+        })
     }
 
     fn dense(
@@ -128,10 +222,12 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
         t: f64,
         h: f64,
         y0: &State<N>,
-        y1: &State<N>,
         f0: &State<N>,
-        f1: &State<N>,
+        a: &Attempt<N>,
     ) -> DenseOutput<N> {
+        let f1 =
+            a.f1.as_ref()
+                .expect("an explicit Runge-Kutta attempt carries f1");
         let s = self.tab.c.len();
         let mut r5 = State::<N>::zeros();
         if !self.tab.d.is_empty() {
@@ -142,16 +238,22 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
                 }
             }
         }
-        DenseOutput::new(t, h, y0, y1, f0, f1, r5)
+        DenseOutput::new(t, h, y0, &a.y1, f0, f1, r5)
     }
 
-    fn stiffness_estimate(&self, h: f64, y1: &State<N>, f1: &State<N>) -> Option<f64> {
+    fn stiffness_estimate(&self, h: f64, a: &Attempt<N>) -> Option<f64> {
         if self.tab.e.is_empty() || self.tab.c.len() < 2 || self.tab.c[self.tab.c.len() - 1] != 1.0
         {
             return None;
         }
         // Two evaluations at t + h: f(last stage input) and f(y1) (Hairer, DOPRI5).
         let s = self.tab.c.len();
-        crate::stiffness::h_lambda(h, y1, f1, &self.last_stage_input, &self.k[s - 1])
+        crate::stiffness::h_lambda(
+            h,
+            &a.y1,
+            a.f1.as_ref()?,
+            &self.last_stage_input,
+            &self.k[s - 1],
+        )
     }
 }

@@ -1,7 +1,7 @@
 //! The problem: a right-hand side, its event functions and what happens at them.
 
 use crate::dense::DenseOutput;
-use crate::State;
+use crate::{Matrix, State};
 
 /// At most this many event functions per system (they are evaluated into a stack array).
 pub const MAX_EVENTS: usize = 16;
@@ -97,6 +97,21 @@ impl<const N: usize> Step<'_, N> {
 pub trait OdeSystem<const N: usize> {
     /// `f(t, y)` in the current regime.
     fn rhs(&self, t: f64, y: &State<N>) -> State<N>;
+
+    /// The Jacobian `df/dy` at `(t, y)` in the current regime, for the implicit method
+    /// ([`crate::Method::Rodas`]); the explicit methods never ask. `None` (the default): it is
+    /// approximated by finite differences, column by column, `N` evaluations of `f` each time.
+    fn jacobian(&self, _t: f64, _y: &State<N>) -> Option<Matrix<N>> {
+        None
+    }
+
+    /// `df/dt` at `(t, y)` in the current regime, for the implicit method, which needs it
+    /// whenever `f` depends on `t`. `None` (the default): a finite difference in `t`, one
+    /// evaluation of `f` with each Jacobian. An autonomous system returns `Some(zero)` and
+    /// saves that evaluation.
+    fn time_derivative(&self, _t: f64, _y: &State<N>) -> Option<State<N>> {
+        None
+    }
 
     /// How many event functions there are (at most [`MAX_EVENTS`]).
     fn event_count(&self) -> usize {

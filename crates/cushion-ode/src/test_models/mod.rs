@@ -4,5 +4,8 @@
 pub mod arenstorf;
 pub mod bouncing_ball;
 pub mod exponential;
+pub mod hires;
+pub mod manufactured;
+pub mod orego;
 pub mod robertson;
 pub mod van_der_pol;
