@@ -150,7 +150,7 @@ def simulate(
         ``cushion simulate --set``; :func:`cushion.keys` lists them).
     rtol, atol, method
         Shorthands for ``solver.rtol``, ``solver.atol`` and ``solver.method`` (``"dp5"``,
-        ``"rk4"``, ``"euler"``).
+        the default; ``"rodas"``, an implicit method for stiff scenes; ``"rk4"``, ``"euler"``).
     trajectory
         Record the trajectory (``False`` is faster when only the summary is wanted).
     sample_interval

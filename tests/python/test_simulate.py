@@ -156,3 +156,9 @@ def test_two_threads_simulate_at_once():
     with ThreadPoolExecutor(2) as pool:
         together = list(pool.map(lambda s: cushion.simulate(set=s, trajectory=False).summary, scenes))
     assert all(same(a, b) for a, b in zip(alone, together))
+
+
+def test_the_implicit_method_from_python_equals_the_command_line(cli_json):
+    run = cushion.simulate(ROOT / "sweeps/scenes/paper-bistable-dt10.toml", method="rodas", trajectory=False)
+    assert same(run.summary, cli_json(ROOT / "sweeps/scenes/paper-bistable-dt10.toml", "--set", "solver.method=rodas"))
+    assert run.status == "ok"

@@ -106,3 +106,40 @@ fn bistable_converges_with_the_tolerance() {
 fn rigid_converges_with_the_tolerance() {
     converges("paper-rigid");
 }
+
+/// The implicit method gives the same summary as DOPRI5 within the tolerance: on every paper
+/// scene, `rodas` at rtol 1e-6 has the same impact counts as the rtol 1e-12 reference (a DOPRI5
+/// run) and its four values lie within 30 rtol of it (measured: within 0.5 rtol; DOPRI5 at
+/// 1e-6 is within 7.2).
+#[test]
+fn the_implicit_method_agrees_with_the_reference_on_every_paper_scene() {
+    let rtol = 1e-6;
+    for name in [
+        "paper-hydraulic-dt70",
+        "paper-hydraulic-dt10",
+        "paper-bistable-dt70",
+        "paper-bistable-dt10",
+        "paper-rigid",
+    ] {
+        let scene = paper(name);
+        let reference = at(&scene, 1e-12);
+        let mut implicit = scene.clone();
+        implicit.set_from_str("solver.method", "rodas").unwrap();
+        let s = at(&implicit, rtol);
+        assert_eq!(
+            (s.object_impacts, s.forward_stop_impacts, s.back_stop_impacts),
+            (
+                reference.object_impacts,
+                reference.forward_stop_impacts,
+                reference.back_stop_impacts
+            ),
+            "{name}: impact counts"
+        );
+        for (err, what) in errors(&scene, &s, &reference).iter().zip(NAMES) {
+            assert!(
+                *err <= 30.0 * rtol,
+                "{name}, rodas: {what} error {err:.2e} > 30 rtol"
+            );
+        }
+    }
+}
