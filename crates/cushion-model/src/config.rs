@@ -191,10 +191,17 @@ pub struct Hydraulic {
     /// main chamber pressure `p_m` and the volume moved through the orifice as states (stiff;
     /// about 1.5e9 for oil). Extension.
     pub bulk_modulus: f64,
-    /// `hydraulic.chamber_volume`: liquid volume of the main chamber at `s = 0`, m^3
-    /// (> `A_p * L`); used only with `bulk_modulus > 0`. Extension.
+    /// `hydraulic.chamber_volume`: liquid volume of the main chamber at `s = 0`, m^3 (>
+    /// `A_p * L`), or 0 (the default): the piston's swept volume `A_p * L` plus
+    /// [`DEAD_VOLUME`], so that it follows the geometry ([`Scene::main_chamber_volume`]). Used
+    /// only with `bulk_modulus > 0`. Extension.
     pub chamber_volume: f64,
 }
+
+/// Liquid in the main chamber beyond the piston's swept volume when `hydraulic.chamber_volume`
+/// is 0, m^3: the paper's geometry (`A_p L` = 2.89e-5 m^3) then holds about 4.0e-5 m^3 at
+/// `s = 0`.
+pub const DEAD_VOLUME: f64 = 1.11e-5;
 
 /// `[bistable]`: the von Mises snap-through element (SPEC section 4).
 #[derive(Clone, Debug, PartialEq)]
@@ -297,7 +304,7 @@ impl Default for Scene {
                 cavitation: false,
                 cavitation_pressure: 0.0,
                 bulk_modulus: 0.0,
-                chamber_volume: 4.0e-5,
+                chamber_volume: 0.0,
             },
             bistable: Bistable {
                 spring_stiffness: 7022.0,

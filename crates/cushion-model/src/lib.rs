@@ -71,10 +71,13 @@
 //!   with `solver.stiffness = "stop"`), which is where an explicit method stops being usable.
 //!   The energy ledger adds the liquid's compression energy as a quadrature. Cavitation applies
 //!   to the lumped model only.
-//! - **Validation** checks every section whatever `module` is, so that a sweep switching the
-//!   module never meets an invalid combination at run time. `object.gap` must be `> 0` (a
-//!   touching start has no contact event), `hydraulic.gas_pressure > 0`,
-//!   `hydraulic.gas_exponent` in `(1, 2]`, `bistable.offset` in `[0, h)`.
+//! - **Validation**: every number must be finite; a part's keys constrain only the scenes that
+//!   have the part (the hydraulic section a hydraulic scene, the chamber volume only a
+//!   compressible liquid, ...), and a sweep checks every run's own scene before its first run,
+//!   so a sweep switching the module never meets an invalid run at run time.
+//!   `object.gap` must be `> 0` (a touching start has no contact event),
+//!   `hydraulic.gas_pressure > 0`, `hydraulic.gas_exponent` in `(1, 2]`, `bistable.offset` in
+//!   `[0, h)`.
 //! - **Stiffness**: the tool resting on its Hertzian stop makes long explicit steps stiff;
 //!   Hairer's test then sets `stats.stiff` (`solver.stiffness = "warn"`, the default) and the
 //!   run stays `ok` with an empty message, or ends with status `stiff` (`"stop"`).

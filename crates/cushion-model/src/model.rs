@@ -281,7 +281,7 @@ impl Model {
             p_cav: (scene.module == Module::Hydraulic && h.cavitation && h.bulk_modulus == 0.0)
                 .then_some(h.cavitation_pressure),
             beta: h.bulk_modulus,
-            v_m0: h.chamber_volume,
+            v_m0: scene.main_chamber_volume(),
         };
         let from_rest = match scene.robot.start {
             RobotStart::Cruising => None,

@@ -108,7 +108,15 @@ fn shipped_scenes_parse_and_validate() {
 }
 
 fn invalid_after(key: &str, text: &str) -> String {
+    invalid_in(&[], key, text)
+}
+
+/// [`invalid_after`] in a scene with the parts `sets` give it.
+fn invalid_in(sets: &[(&str, &str)], key: &str, text: &str) -> String {
     let mut s = Scene::default();
+    for (k, v) in sets {
+        s.set_from_str(k, v).unwrap();
+    }
     s.set_from_str(key, text).unwrap();
     let err = s.validate().unwrap_err();
     assert_eq!(err.key(), Some(key), "{err}");
@@ -244,21 +252,111 @@ fn toml_syntax_error_names_the_line() {
 
 #[test]
 fn rejects_bad_bistable_offset_and_gas_exponent() {
-    invalid_after("bistable.offset", "0.02");
+    invalid_in(&[("module", "bistable")], "bistable.offset", "0.02");
     invalid_after("hydraulic.gas_exponent", "1.0");
 }
 
 #[test]
 fn rejects_cavitation_pressure_above_gas_pressure() {
-    let m = invalid_after("hydraulic.cavitation_pressure", "2000");
+    let m = invalid_in(
+        &[("hydraulic.cavitation", "true")],
+        "hydraulic.cavitation_pressure",
+        "2000",
+    );
     assert!(m.contains("hydraulic.gas_pressure"), "{m}");
 }
 
 #[test]
 fn rejects_main_chamber_smaller_than_the_stroke_volume() {
-    let m = invalid_after("hydraulic.chamber_volume", "1e-5");
-    assert!(m.contains("stroke"), "{m}");
+    // a compressible liquid: the chamber volume is used
+    let mut s = Scene::default();
+    s.set_from_str("hydraulic.bulk_modulus", "1.5e9").unwrap();
+    s.set_from_str("hydraulic.chamber_volume", "1e-5").unwrap();
+    let err = s.validate().unwrap_err();
+    assert_eq!(err.key(), Some("hydraulic.chamber_volume"), "{err}");
+    assert!(err.to_string().contains("stroke"), "{err}");
     invalid_after("hydraulic.bulk_modulus", "-1");
+    invalid_after("hydraulic.chamber_volume", "-1");
+}
+
+/// A part's keys constrain only the scenes that have the part: a lumped hydraulic scene with a
+/// 27 mm piston is valid whatever the compressible model's chamber would need (its default
+/// follows the geometry: the swept volume plus a dead volume), a rigid scene carries a
+/// hydraulic section it does not use, a hydraulic one a bistable section, a scene without an
+/// object an object section; each is refused once the part is in the scene.
+#[test]
+fn a_part_constrains_only_the_scenes_that_have_it() {
+    let scene = |sets: &[(&str, &str)]| {
+        let mut s = Scene::default();
+        for (k, v) in sets {
+            s.set_from_str(k, v).unwrap();
+        }
+        s
+    };
+    let big_piston = scene(&[("hydraulic.piston_radius", "0.027")]);
+    big_piston.validate().unwrap();
+    let a_p_l = big_piston.piston_area() * big_piston.stops.stroke;
+    assert_eq!(
+        big_piston.main_chamber_volume(),
+        a_p_l + cushion_model::config::DEAD_VOLUME
+    );
+    scene(&[
+        ("hydraulic.piston_radius", "0.027"),
+        ("hydraulic.bulk_modulus", "1.5e9"),
+    ])
+    .validate()
+    .unwrap();
+    // the default chamber of the paper's geometry
+    let paper = Scene::default().main_chamber_volume();
+    assert!((paper - 4.0e-5).abs() < 1e-8, "{paper}");
+
+    for (unused, part, key) in [
+        (
+            vec![("module", "rigid"), ("hydraulic.orifice_radius", "0.05")],
+            vec![("module", "hydraulic")],
+            "hydraulic.orifice_radius",
+        ),
+        (
+            vec![("bistable.half_span", "-1")],
+            vec![("module", "bistable")],
+            "bistable.half_span",
+        ),
+        (
+            vec![("object.enabled", "false"), ("object.mass", "0")],
+            vec![("object.enabled", "true")],
+            "object.mass",
+        ),
+        (
+            vec![("module", "rigid"), ("tool.sensor_threshold", "1")],
+            vec![("module", "bistable")],
+            "tool.sensor_threshold",
+        ),
+        (
+            vec![("hydraulic.cavitation_pressure", "5000")],
+            vec![("hydraulic.cavitation", "true")],
+            "hydraulic.cavitation_pressure",
+        ),
+    ] {
+        let without = scene(&unused);
+        without
+            .validate()
+            .unwrap_or_else(|e| panic!("{unused:?}: {e}"));
+        let r = simulate(&without, &RunOptions::default());
+        assert_eq!(
+            r.summary.status,
+            RunStatus::Ok,
+            "{unused:?}: {}",
+            r.summary.message
+        );
+        let mut with = without.clone();
+        for (k, v) in &part {
+            with.set_from_str(k, v).unwrap();
+        }
+        let err = with.validate().unwrap_err();
+        assert_eq!(err.key(), Some(key), "{unused:?} + {part:?}: {err}");
+    }
+    // a value that is no number is refused in any scene
+    invalid_after("bistable.half_span", "nan");
 }
 
 /// Every key, for each module, set to values a user may mistype or push to an extreme: either

@@ -127,7 +127,11 @@ fn the_implicit_method_agrees_with_the_reference_on_every_paper_scene() {
         implicit.set_from_str("solver.method", "rodas").unwrap();
         let s = at(&implicit, rtol);
         assert_eq!(
-            (s.object_impacts, s.forward_stop_impacts, s.back_stop_impacts),
+            (
+                s.object_impacts,
+                s.forward_stop_impacts,
+                s.back_stop_impacts
+            ),
             (
                 reference.object_impacts,
                 reference.forward_stop_impacts,

@@ -107,7 +107,7 @@ scene_keys! {
     "hydraulic.bulk_modulus" => hydraulic.bulk_modulus, "Pa",
         "beta: bulk modulus of the liquid; 0 = incompressible (lumped model), > 0 = compressible model (stiff; about 1.5e9 for oil)";
     "hydraulic.chamber_volume" => hydraulic.chamber_volume, "m^3",
-        "V_m0: liquid volume of the main chamber at s = 0, used with hydraulic.bulk_modulus > 0; must exceed A_p * L";
+        "V_m0: liquid volume of the main chamber at s = 0, used with hydraulic.bulk_modulus > 0; must exceed A_p * L; 0: A_p * L plus a dead volume of 1.11e-5 m^3";
     "bistable.spring_stiffness" => bistable.spring_stiffness, "N/m",
         "k_b: stiffness of each of the two springs of the snap-through element (> 0)";
     "bistable.half_span" => bistable.half_span, "m",
@@ -299,6 +299,17 @@ impl Scene {
     pub fn piston_area(&self) -> f64 {
         std::f64::consts::PI * self.hydraulic.piston_radius.powi(2)
     }
+    /// The main chamber's liquid volume at `s = 0` for the compressible model, m^3:
+    /// `hydraulic.chamber_volume`, or, when that is 0, the piston's swept volume `A_p L` plus
+    /// [`DEAD_VOLUME`](super::DEAD_VOLUME).
+    pub fn main_chamber_volume(&self) -> f64 {
+        if self.hydraulic.chamber_volume > 0.0 {
+            self.hydraulic.chamber_volume
+        } else {
+            self.piston_area() * self.stops.stroke + super::DEAD_VOLUME
+        }
+    }
+
     /// Orifice area `A_o = pi R_o^2`, m^2.
     pub fn orifice_area(&self) -> f64 {
         std::f64::consts::PI * self.hydraulic.orifice_radius.powi(2)

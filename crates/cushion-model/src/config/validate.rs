@@ -3,14 +3,19 @@
 
 use super::keys::{invalid, KEY_LIST};
 use super::values::format_float;
-use super::{ConfigError, Scene};
+use super::{ConfigError, Module, Scene, DEAD_VOLUME};
 use crate::physics;
 
 impl Scene {
-    /// Check every value and every combination (SPEC and issue 3: positive masses, orifice
-    /// smaller than piston, gas volume positive over the stroke, sensor inside the stroke,
-    /// finite numbers, ...). Every section is checked whatever the module, so a scene stays
-    /// valid when a sweep switches `module`.
+    /// Check every value and every combination (positive masses, orifice smaller than piston,
+    /// gas volume positive over the stroke, sensor inside the stroke, ...). Every number must be
+    /// finite; beyond that, a part's keys constrain only the scenes that have the part: the
+    /// stops and the sensor a module with a sliding tool, the hydraulic section a hydraulic
+    /// scene (the compressible liquid's chamber volume only with `bulk_modulus > 0`, the
+    /// cavitation pressure only with cavitation), the bistable section a bistable scene, the
+    /// object a scene with an object. A sweep checks every run's own scene before its first
+    /// run, so a sweep that switches `module` still meets no invalid run at run time
+    /// (`tests/config.rs::a_part_constrains_only_the_scenes_that_have_it`).
     pub fn validate(&self) -> Result<(), ConfigError> {
         // 1. every number finite
         for key in KEY_LIST {
@@ -42,94 +47,104 @@ impl Scene {
         pos("tool.mass", self.tool.mass)?;
         nonneg("tool.viscous_friction", self.tool.viscous_friction)?;
         nonneg("tool.dry_friction", self.tool.dry_friction)?;
-        pos("object.mass", self.object.mass)?;
-        pos("object.gap", self.object.gap)?;
-        pos("object.contact_stiffness", self.object.contact_stiffness)?;
-        nonneg("object.contact_damping", self.object.contact_damping)?;
-        nonneg("object.plane_friction", self.object.plane_friction)?;
-        pos("stops.stroke", self.stops.stroke)?;
-        pos("stops.stiffness", self.stops.stiffness)?;
-        nonneg("stops.damping", self.stops.damping)?;
+        if self.object.enabled {
+            pos("object.mass", self.object.mass)?;
+            pos("object.gap", self.object.gap)?;
+            pos("object.contact_stiffness", self.object.contact_stiffness)?;
+            nonneg("object.contact_damping", self.object.contact_damping)?;
+            nonneg("object.plane_friction", self.object.plane_friction)?;
+        }
         let l = self.stops.stroke;
-        let ss = self.tool.sensor_threshold;
-        if !(ss > 0.0 && ss < l) {
-            return Err(invalid(
-                "tool.sensor_threshold",
-                ss,
-                format!(
-                    "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
-                    format_float(l)
-                ),
-            ));
+        if self.module != Module::Rigid {
+            pos("stops.stroke", self.stops.stroke)?;
+            pos("stops.stiffness", self.stops.stiffness)?;
+            nonneg("stops.damping", self.stops.damping)?;
+            let ss = self.tool.sensor_threshold;
+            if !(ss > 0.0 && ss < l) {
+                return Err(invalid(
+                    "tool.sensor_threshold",
+                    ss,
+                    format!(
+                        "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
+                        format_float(l)
+                    ),
+                ));
+            }
         }
-        let h = &self.hydraulic;
-        pos("hydraulic.piston_radius", h.piston_radius)?;
-        pos("hydraulic.orifice_radius", h.orifice_radius)?;
-        if h.orifice_radius >= h.piston_radius {
-            return Err(invalid(
-                "hydraulic.orifice_radius",
-                h.orifice_radius,
-                format!(
-                    "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
-                    format_float(h.piston_radius)
-                ),
-            ));
+        if self.module == Module::Hydraulic {
+            let h = &self.hydraulic;
+            pos("hydraulic.piston_radius", h.piston_radius)?;
+            pos("hydraulic.orifice_radius", h.orifice_radius)?;
+            if h.orifice_radius >= h.piston_radius {
+                return Err(invalid(
+                    "hydraulic.orifice_radius",
+                    h.orifice_radius,
+                    format!(
+                        "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
+                        format_float(h.piston_radius)
+                    ),
+                ));
+            }
+            pos("hydraulic.loss_coefficient", h.loss_coefficient)?;
+            pos("hydraulic.liquid_density", h.liquid_density)?;
+            pos("hydraulic.gas_pressure", h.gas_pressure)?;
+            pos("hydraulic.gas_volume", h.gas_volume)?;
+            let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
+            if h.gas_volume - a_p * l <= 0.0 {
+                return Err(invalid(
+                    "hydraulic.gas_volume",
+                    h.gas_volume,
+                    format!(
+                        "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                        format_float(a_p * l)
+                    ),
+                ));
+            }
+            let k = h.gas_exponent;
+            if !(k > 1.0 && k <= 2.0) {
+                return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+            }
+            nonneg("hydraulic.bulk_modulus", h.bulk_modulus)?;
+            nonneg("hydraulic.chamber_volume", h.chamber_volume)?;
+            if h.bulk_modulus > 0.0 && self.main_chamber_volume() - a_p * l <= 0.0 {
+                return Err(invalid(
+                    "hydraulic.chamber_volume",
+                    h.chamber_volume,
+                    format!(
+                        "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3 (or 0: the swept volume plus {} m^3)",
+                        format_float(a_p * l),
+                        format_float(DEAD_VOLUME)
+                    ),
+                ));
+            }
+            if h.cavitation && h.cavitation_pressure >= h.gas_pressure {
+                return Err(invalid(
+                    "hydraulic.cavitation_pressure",
+                    h.cavitation_pressure,
+                    format!(
+                        "must be < hydraulic.gas_pressure = {}",
+                        format_float(h.gas_pressure)
+                    ),
+                ));
+            }
         }
-        pos("hydraulic.loss_coefficient", h.loss_coefficient)?;
-        pos("hydraulic.liquid_density", h.liquid_density)?;
-        pos("hydraulic.gas_pressure", h.gas_pressure)?;
-        pos("hydraulic.gas_volume", h.gas_volume)?;
-        let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
-        if h.gas_volume - a_p * l <= 0.0 {
-            return Err(invalid(
-                "hydraulic.gas_volume",
-                h.gas_volume,
-                format!(
-                    "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
-                    format_float(a_p * l)
-                ),
-            ));
+        if self.module == Module::Bistable {
+            let b = &self.bistable;
+            pos("bistable.spring_stiffness", b.spring_stiffness)?;
+            pos("bistable.half_span", b.half_span)?;
+            pos("bistable.apex_rise", b.apex_rise)?;
+            if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
+                return Err(invalid(
+                    "bistable.offset",
+                    b.offset,
+                    format!(
+                        "must lie in [0, bistable.apex_rise = {})",
+                        format_float(b.apex_rise)
+                    ),
+                ));
+            }
+            self.bistable_forces_are_finite()?;
         }
-        let k = h.gas_exponent;
-        if !(k > 1.0 && k <= 2.0) {
-            return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
-        }
-        nonneg("hydraulic.bulk_modulus", h.bulk_modulus)?;
-        if h.chamber_volume - a_p * l <= 0.0 {
-            return Err(invalid(
-                "hydraulic.chamber_volume",
-                h.chamber_volume,
-                format!(
-                    "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3",
-                    format_float(a_p * l)
-                ),
-            ));
-        }
-        if h.cavitation_pressure >= h.gas_pressure {
-            return Err(invalid(
-                "hydraulic.cavitation_pressure",
-                h.cavitation_pressure,
-                format!(
-                    "must be < hydraulic.gas_pressure = {}",
-                    format_float(h.gas_pressure)
-                ),
-            ));
-        }
-        let b = &self.bistable;
-        pos("bistable.spring_stiffness", b.spring_stiffness)?;
-        pos("bistable.half_span", b.half_span)?;
-        pos("bistable.apex_rise", b.apex_rise)?;
-        if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
-            return Err(invalid(
-                "bistable.offset",
-                b.offset,
-                format!(
-                    "must lie in [0, bistable.apex_rise = {})",
-                    format_float(b.apex_rise)
-                ),
-            ));
-        }
-        self.bistable_forces_are_finite()?;
         let s = &self.solver;
         // Hairer's DOPRI5 refuses rtol <= 10 eps (no step can meet it); 1 or more asks for no
         // digit at all
