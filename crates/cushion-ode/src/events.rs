@@ -263,6 +263,14 @@ impl<const N: usize> EventScan<N> {
                     _ => EventAction::Continue,
                 };
             }
+            // A handler that keeps the step may still ask for a time stop inside the rest of
+            // it: the step must not run past that stop, so it is cut at the event, as for a
+            // restart (`tests/events.rs::a_time_stop_asked_for_inside_the_step_is_kept`).
+            if strongest == EventAction::Continue
+                && ctl.new_time_stops.iter().any(|&s| s > t_first && s < t1)
+            {
+                strongest = EventAction::Restart;
+            }
             if strongest != EventAction::Continue {
                 return (t_first, y_after, strongest);
             }

@@ -469,3 +469,48 @@ fn a_handler_may_schedule_any_number_of_time_stops() {
         assert!((got - want).abs() < 1e-15, "{got} vs {want}");
     }
 }
+
+/// A handler that keeps its step (`Continue`) but asks for a time stop inside the rest of it:
+/// the stop is still stepped onto.
+struct StopInsideTheStep {
+    reached: Vec<f64>,
+}
+
+impl OdeSystem<1> for StopInsideTheStep {
+    fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
+        State::<1>::new(1.0)
+    }
+    fn event_count(&self) -> usize {
+        1
+    }
+    fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
+        g[0] = y[0] - 0.25;
+    }
+    fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<1>, ctl: &mut Control) -> EventAction {
+        ctl.add_time_stop(t + 0.1);
+        EventAction::Continue
+    }
+    fn on_time_stop(&mut self, t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
+        self.reached.push(t);
+        EventAction::Continue
+    }
+}
+
+#[test]
+fn a_time_stop_asked_for_inside_the_step_is_kept() {
+    // y' = 1 is integrated in one step from 0 to 1: the event at 0.25 asks for a stop at 0.35,
+    // inside that step
+    let mut sys = StopInsideTheStep {
+        reached: Vec::new(),
+    };
+    let sol = solve(
+        &mut sys,
+        0.0,
+        State::<1>::new(0.0),
+        1.0,
+        &SolverOptions::default(),
+    );
+    assert_eq!(sol.status, Status::Success);
+    assert_eq!(sol.stats.time_stops, 1, "{:?}", sys.reached);
+    assert!((sys.reached[0] - 0.35).abs() < 1e-15, "{:?}", sys.reached);
+}
