@@ -8,7 +8,8 @@
 //! Extensions beyond SPEC section 7 (all optional, with defaults that reproduce the SPEC):
 //! `object.enabled`, `energy.ledger`, `solver.max_steps`, `solver.fixed_step`,
 //! `solver.stiffness`, `solver.early_end`, `solver.ringing_tail`, `hydraulic.cavitation`,
-//! `hydraulic.cavitation_pressure`, `hydraulic.bulk_modulus`, `hydraulic.chamber_volume`.
+//! `hydraulic.cavitation_pressure`, `hydraulic.bulk_modulus`, `hydraulic.chamber_volume`,
+//! `hydraulic.kinematic_viscosity`, `hydraulic.critical_reynolds`.
 //!
 //! Every key's unit and description live in one list, the `scene_keys!` invocation below;
 //! [`Scene::key_info`] returns it, and `docs/scene-keys.md` is its table with the defaults (a
@@ -196,6 +197,14 @@ pub struct Hydraulic {
     /// [`DEAD_VOLUME`], so that it follows the geometry ([`Scene::main_chamber_volume`]). Used
     /// only with `bulk_modulus > 0`. Extension.
     pub chamber_volume: f64,
+    /// `hydraulic.kinematic_viscosity`: `nu`, of the liquid, m^2/s (> 0; 3.2e-5 for an ISO VG
+    /// 32 hydraulic oil at 40 C). With `critical_reynolds` it sets where the compressible
+    /// model's orifice turns laminar. Extension.
+    pub kinematic_viscosity: f64,
+    /// `hydraulic.critical_reynolds`: `Re_cr`, the orifice's Reynolds number below which its
+    /// flow is laminar, - (> 0; 12, as Simscape Fluids' local restrictions; Merritt gives 10
+    /// or so for sharp-edged orifices). Compressible model only. Extension.
+    pub critical_reynolds: f64,
 }
 
 /// Liquid in the main chamber beyond the piston's swept volume when `hydraulic.chamber_volume`
@@ -305,6 +314,8 @@ impl Default for Scene {
                 cavitation_pressure: 0.0,
                 bulk_modulus: 0.0,
                 chamber_volume: 0.0,
+                kinematic_viscosity: 3.2e-5,
+                critical_reynolds: 12.0,
             },
             bistable: Bistable {
                 spring_stiffness: 7022.0,

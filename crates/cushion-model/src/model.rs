@@ -152,6 +152,8 @@ pub(crate) struct Params {
     /// Liquid bulk modulus (Pa) and main chamber volume at `s = 0` (m^3), compressible model.
     pub beta: f64,
     pub v_m0: f64,
+    /// Pressure difference where the compressible model's orifice turns laminar, Pa.
+    pub p_transition: f64,
 }
 
 /// The discrete state of the run.
@@ -282,6 +284,13 @@ impl Model {
                 .then_some(h.cavitation_pressure),
             beta: h.bulk_modulus,
             v_m0: scene.main_chamber_volume(),
+            p_transition: physics::orifice_transition_pressure(
+                h.loss_coefficient,
+                h.liquid_density,
+                h.kinematic_viscosity,
+                h.critical_reynolds,
+                h.orifice_radius,
+            ),
         };
         let from_rest = match scene.robot.start {
             RobotStart::Cruising => None,

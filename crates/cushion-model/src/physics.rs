@@ -44,6 +44,27 @@ pub fn orifice_pressure_drop(c0: f64, rho: f64, a_p: f64, a_o: f64, sd: f64) -> 
     0.5 * c0 * rho * r * r * sd * sd.abs()
 }
 
+/// The pressure difference across an orifice (Pa) at which its flow turns from laminar to
+/// turbulent: where the turbulent law's jet speed `sqrt(2 dp / (c0 rho))` reaches the critical
+/// Reynolds number's, `Re_cr nu / D` with `D = 2 R_o`.
+pub fn orifice_transition_pressure(c0: f64, rho: f64, nu: f64, re_cr: f64, r_o: f64) -> f64 {
+    let v = re_cr * nu / (2.0 * r_o);
+    0.5 * c0 * rho * v * v
+}
+
+/// Flow through an orifice (m^3/s) for a pressure difference `dp` (Pa), turbulent above the
+/// transition pressure `p_tr` and laminar below it, in one smooth law (Simscape Fluids' local
+/// restriction; Merritt, Hydraulic Control Systems, sec. 2.9):
+/// `Q = A_o sqrt(2 / (c0 rho)) dp / (dp^2 + p_tr^2)^(1/4)`. For `|dp| >> p_tr` it is the
+/// turbulent law `A_o sgn(dp) sqrt(2 |dp| / (c0 rho))`, the lumped model's solved for the flow;
+/// for `|dp| << p_tr` the flow is proportional to `dp`, so its derivative at rest is finite
+/// (the turbulent law's is infinite, which made the compressible model infinitely stiff at
+/// rest).
+#[inline]
+pub fn orifice_flow(a_o: f64, c0: f64, rho: f64, p_tr: f64, dp: f64) -> f64 {
+    a_o * (2.0 / (c0 * rho)).sqrt() * dp / (dp * dp + p_tr * p_tr).sqrt().sqrt()
+}
+
 /// Adiabatic gas pressure (Pa) at stroke `s`: `p10 (V_g0 / (V_g0 - A_p s))^kappa`.
 #[inline]
 pub fn gas_pressure(p10: f64, v_g0: f64, a_p: f64, kappa: f64, s: f64) -> f64 {
@@ -312,6 +333,27 @@ mod tests {
         assert_eq!(hunt_crossley(0.6e6, 1.35e6, 0.0, 5.0), 0.0);
         // energy: k d^2.5 / 2.5 = 0.6e6 * 1e-10 / 2.5
         assert!(close(hunt_crossley_energy(0.6e6, 1e-4), 2.4e-5, 1e-12));
+    }
+
+    #[test]
+    fn orifice_flow_is_turbulent_above_the_transition_and_laminar_below() {
+        let (a_o, c0, rho) = (std::f64::consts::PI * 0.008f64.powi(2), 3.0, 900.0);
+        // Re_cr 12, nu 3.2e-5 m^2/s, D 16 mm: v_cr = 0.024 m/s, p_tr = 0.5 c0 rho v_cr^2
+        let p_tr = orifice_transition_pressure(c0, rho, 3.2e-5, 12.0, 0.008);
+        assert!((p_tr - 0.5 * 3.0 * 900.0 * 0.024f64.powi(2)).abs() < 1e-12 * p_tr);
+        let turbulent = |dp: f64| dp.signum() * a_o * (2.0 * dp.abs() / (c0 * rho)).sqrt();
+        for dp in [1e3 * p_tr, -1e4 * p_tr, 1e6 * p_tr] {
+            let q = orifice_flow(a_o, c0, rho, p_tr, dp);
+            // (1 + (p_tr/dp)^2)^(-1/4) = 1 - (p_tr/dp)^2 / 4 + ...
+            let rel = (q / turbulent(dp) - 1.0).abs();
+            assert!(rel <= 0.26 * (p_tr / dp).powi(2) + 1e-15, "{dp}: {rel:e}");
+        }
+        let slope = a_o * (2.0 / (c0 * rho)).sqrt() / p_tr.sqrt();
+        for dp in [1e-6 * p_tr, -1e-3 * p_tr] {
+            let q = orifice_flow(a_o, c0, rho, p_tr, dp);
+            assert!((q / (slope * dp) - 1.0).abs() < 1e-6, "{dp}");
+        }
+        assert_eq!(orifice_flow(a_o, c0, rho, p_tr, 0.0), 0.0);
     }
 
     #[test]

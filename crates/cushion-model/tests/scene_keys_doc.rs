@@ -31,6 +31,7 @@ const UNITS: &[&str] = &[
     "kg",
     "kg/s",
     "kg/m^3",
+    "m^2/s",
     "N",
     "N/m",
     "N/m^1.5",

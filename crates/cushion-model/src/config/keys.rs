@@ -108,6 +108,10 @@ scene_keys! {
         "beta: bulk modulus of the liquid; 0 = incompressible (lumped model), > 0 = compressible model (stiff; about 1.5e9 for oil)";
     "hydraulic.chamber_volume" => hydraulic.chamber_volume, "m^3",
         "V_m0: liquid volume of the main chamber at s = 0, used with hydraulic.bulk_modulus > 0; must exceed A_p * L; 0: A_p * L plus a dead volume of 1.11e-5 m^3";
+    "hydraulic.kinematic_viscosity" => hydraulic.kinematic_viscosity, "m^2/s",
+        "nu: kinematic viscosity of the liquid (> 0); with hydraulic.critical_reynolds, where the compressible model's orifice turns laminar";
+    "hydraulic.critical_reynolds" => hydraulic.critical_reynolds, "-",
+        "Re_cr: the orifice's Reynolds number below which its flow is laminar (> 0), compressible model";
     "bistable.spring_stiffness" => bistable.spring_stiffness, "N/m",
         "k_b: stiffness of each of the two springs of the snap-through element (> 0)";
     "bistable.half_span" => bistable.half_span, "m",

@@ -117,6 +117,10 @@ impl Scene {
                     ),
                 ));
             }
+            if h.bulk_modulus > 0.0 {
+                pos("hydraulic.kinematic_viscosity", h.kinematic_viscosity)?;
+                pos("hydraulic.critical_reynolds", h.critical_reynolds)?;
+            }
             if h.cavitation && h.cavitation_pressure >= h.gas_pressure {
                 return Err(invalid(
                     "hydraulic.cavitation_pressure",

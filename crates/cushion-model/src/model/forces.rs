@@ -95,12 +95,13 @@ impl Model {
             match p.module {
                 Module::Hydraulic if self.layout.liquid.is_some() => {
                     // compressible liquid: p_m is a state; the orifice passes the flow its
-                    // pressure drop allows, dp = 0.5 c0 rho (Q/A_o)^2 sgn(Q)
+                    // pressure drop allows, turbulent (dp = 0.5 c0 rho (Q/A_o)^2 sgn(Q)) down
+                    // to the transition pressure, laminar below it
                     let q = self.layout.liquid.unwrap_or(0);
                     let (p_m, v_x) = (y[q], y[q + 1]);
                     e.p1 = self.gas.pressure(v_x);
                     e.dp = p_m - e.p1;
-                    e.flow = e.dp.signum() * p.a_o * (2.0 * e.dp.abs() / (p.c0 * p.rho)).sqrt();
+                    e.flow = physics::orifice_flow(p.a_o, p.c0, p.rho, p.p_transition, e.dp);
                     let v_m = p.v_m0 - p.a_p * e.s;
                     e.dp_m = p.beta / v_m * (p.a_p * e.sd - e.flow);
                     e.f_module = p_m * p.a_p;
