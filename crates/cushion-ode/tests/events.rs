@@ -1,5 +1,6 @@
 //! Event detection, location, actions and time stops.
 
+use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
 use cushion_ode::{
     solve, Control, Direction, EventAction, Method, OdeSystem, Output, SolverOptions, State,
     Status, Tolerance,
@@ -143,46 +144,10 @@ fn time_stops_are_hit_exactly() {
     assert!((sol.y[0] - exact).abs() > 1e-14);
 }
 
-/// `x' = v`, `v' = a` where `a` switches from 0 to -1 at a time stop scheduled by an event
-/// (x rising through 1) plus a delay: like a sensor and a robot's dead time.
-struct Scheduled {
-    delay: f64,
-    braking: bool,
-    stop_time: Option<f64>,
-}
-
-impl OdeSystem<2> for Scheduled {
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        State::<2>::new(y[1], if self.braking { -1.0 } else { 0.0 })
-    }
-    fn event_count(&self) -> usize {
-        1
-    }
-    fn events(&self, _t: f64, y: &State<2>, g: &mut [f64]) {
-        g[0] = y[0] - 1.0;
-    }
-    fn event_direction(&self, _i: usize) -> Direction {
-        Direction::Rising
-    }
-    fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<2>, ctl: &mut Control) -> EventAction {
-        self.stop_time = Some(t + self.delay);
-        ctl.add_time_stop(t + self.delay);
-        EventAction::Continue
-    }
-    fn on_time_stop(&mut self, _t: f64, _y: &mut State<2>, _ctl: &mut Control) -> EventAction {
-        self.braking = true;
-        EventAction::Continue
-    }
-}
-
 #[test]
 fn time_stops_added_while_integrating_are_hit_exactly() {
     for method in [Method::Dp5, Method::Rk4, Method::Euler] {
-        let mut sys = Scheduled {
-            delay: 0.07,
-            braking: false,
-            stop_time: None,
-        };
+        let mut sys = ScheduledBrake::new(0.07);
         let opts = SolverOptions {
             method,
             fixed_step: 0.013,
@@ -421,12 +386,16 @@ fn per_component_tolerances_are_used() {
     );
 }
 
-/// A handler that schedules many time stops at once: every one is stepped onto.
-struct ManyStops {
+/// `y' = 1` with one event at `y = at`, whose handler asks for time stops `at + delays[k]` and
+/// answers `action`: the stops reached are recorded.
+struct StopsFromAnEvent {
+    at: f64,
+    delays: Vec<f64>,
+    action: EventAction,
     reached: Vec<f64>,
 }
 
-impl OdeSystem<1> for ManyStops {
+impl OdeSystem<1> for StopsFromAnEvent {
     fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
         State::<1>::new(1.0)
     }
@@ -434,14 +403,13 @@ impl OdeSystem<1> for ManyStops {
         1
     }
     fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
-        g[0] = y[0] - 0.5;
+        g[0] = y[0] - self.at;
     }
     fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<1>, ctl: &mut Control) -> EventAction {
-        for k in 1..=20 {
-            ctl.add_time_stop(t + 0.01 * k as f64);
+        for d in &self.delays {
+            ctl.add_time_stop(t + d);
         }
-        // cut the step here, so the stops lie ahead
-        EventAction::Restart
+        self.action
     }
     fn on_time_stop(&mut self, t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
         self.reached.push(t);
@@ -449,9 +417,12 @@ impl OdeSystem<1> for ManyStops {
     }
 }
 
-#[test]
-fn a_handler_may_schedule_any_number_of_time_stops() {
-    let mut sys = ManyStops {
+/// The stops reached from `t = 0` to 1, which `y' = 1` covers in one step.
+fn stops_reached(at: f64, delays: Vec<f64>, action: EventAction) -> Vec<f64> {
+    let mut sys = StopsFromAnEvent {
+        at,
+        delays,
+        action,
         reached: Vec::new(),
     };
     let sol = solve(
@@ -462,55 +433,25 @@ fn a_handler_may_schedule_any_number_of_time_stops() {
         &SolverOptions::default(),
     );
     assert_eq!(sol.status, Status::Success);
-    assert_eq!(sol.stats.time_stops, 20);
-    let want: Vec<f64> = (1..=20).map(|k| 0.5 + 0.01 * k as f64).collect();
-    assert_eq!(sys.reached.len(), 20);
-    for (got, want) in sys.reached.iter().zip(&want) {
-        assert!((got - want).abs() < 1e-15, "{got} vs {want}");
-    }
+    assert_eq!(sol.stats.time_stops as usize, sys.reached.len());
+    sys.reached
 }
 
-/// A handler that keeps its step (`Continue`) but asks for a time stop inside the rest of it:
-/// the stop is still stepped onto.
-struct StopInsideTheStep {
-    reached: Vec<f64>,
-}
-
-impl OdeSystem<1> for StopInsideTheStep {
-    fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
-        State::<1>::new(1.0)
-    }
-    fn event_count(&self) -> usize {
-        1
-    }
-    fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
-        g[0] = y[0] - 0.25;
-    }
-    fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<1>, ctl: &mut Control) -> EventAction {
-        ctl.add_time_stop(t + 0.1);
-        EventAction::Continue
-    }
-    fn on_time_stop(&mut self, t: f64, _y: &mut State<1>, _ctl: &mut Control) -> EventAction {
-        self.reached.push(t);
-        EventAction::Continue
+#[test]
+fn a_handler_may_schedule_any_number_of_time_stops() {
+    // the handler cuts the step (Restart), so all 20 stops lie ahead
+    let delays: Vec<f64> = (1..=20).map(|k| 0.01 * k as f64).collect();
+    let reached = stops_reached(0.5, delays.clone(), EventAction::Restart);
+    assert_eq!(reached.len(), 20);
+    for (got, d) in reached.iter().zip(&delays) {
+        assert!((got - (0.5 + d)).abs() < 1e-15, "{got} vs {}", 0.5 + d);
     }
 }
 
 #[test]
 fn a_time_stop_asked_for_inside_the_step_is_kept() {
-    // y' = 1 is integrated in one step from 0 to 1: the event at 0.25 asks for a stop at 0.35,
-    // inside that step
-    let mut sys = StopInsideTheStep {
-        reached: Vec::new(),
-    };
-    let sol = solve(
-        &mut sys,
-        0.0,
-        State::<1>::new(0.0),
-        1.0,
-        &SolverOptions::default(),
-    );
-    assert_eq!(sol.status, Status::Success);
-    assert_eq!(sol.stats.time_stops, 1, "{:?}", sys.reached);
-    assert!((sys.reached[0] - 0.35).abs() < 1e-15, "{:?}", sys.reached);
+    // the handler keeps the step from 0 to 1 (Continue) but asks for a stop at 0.35 inside it
+    let reached = stops_reached(0.25, vec![0.1], EventAction::Continue);
+    assert_eq!(reached.len(), 1, "{reached:?}");
+    assert!((reached[0] - 0.35).abs() < 1e-15, "{reached:?}");
 }

@@ -3,10 +3,8 @@
 
 use cushion_ode::test_models::bouncing_ball::BouncingBall;
 use cushion_ode::test_models::exponential::Oscillator;
-use cushion_ode::{
-    solve, Control, Direction, EventAction, Method, OdeSystem, Output, SolverOptions, State,
-    Status, Tolerance,
-};
+use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
+use cushion_ode::{solve, Method, OdeSystem, Output, SolverOptions, State, Status, Tolerance};
 
 fn rodas(tol: f64) -> SolverOptions {
     SolverOptions {
@@ -51,48 +49,9 @@ fn bouncing_ball_bounce_times_match_the_closed_form() {
     );
 }
 
-/// `x' = v`, `v' = a(t)`, where `a` switches from 0 to -1 at a time stop that an event
-/// (`x` rising through 1) schedules `delay` later; `df/dt = 0` in each regime.
-struct Scheduled {
-    delay: f64,
-    braking: bool,
-    stop_time: Option<f64>,
-}
-
-impl OdeSystem<2> for Scheduled {
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        State::<2>::new(y[1], if self.braking { -1.0 } else { 0.0 })
-    }
-    fn time_derivative(&self, _t: f64, _y: &State<2>) -> Option<State<2>> {
-        Some(State::<2>::zeros())
-    }
-    fn event_count(&self) -> usize {
-        1
-    }
-    fn events(&self, _t: f64, y: &State<2>, g: &mut [f64]) {
-        g[0] = y[0] - 1.0;
-    }
-    fn event_direction(&self, _i: usize) -> Direction {
-        Direction::Rising
-    }
-    fn on_event(&mut self, _i: usize, t: f64, _y: &mut State<2>, ctl: &mut Control) -> EventAction {
-        self.stop_time = Some(t + self.delay);
-        ctl.add_time_stop(t + self.delay);
-        EventAction::Continue
-    }
-    fn on_time_stop(&mut self, _t: f64, _y: &mut State<2>, _ctl: &mut Control) -> EventAction {
-        self.braking = true;
-        EventAction::Continue
-    }
-}
-
 #[test]
 fn time_stops_added_while_integrating_are_hit_exactly() {
-    let mut sys = Scheduled {
-        delay: 0.07,
-        braking: false,
-        stop_time: None,
-    };
+    let mut sys = ScheduledBrake::new(0.07);
     // The solution is piecewise linear-quadratic, so the error estimate vanishes and the steps
     // grow six-fold each; h_max keeps the stop (0.07 after the event) beyond the step in which
     // the event is found, since a stop scheduled inside an already accepted step is dropped.

@@ -8,4 +8,5 @@ pub mod hires;
 pub mod manufactured;
 pub mod orego;
 pub mod robertson;
+pub mod scheduled_brake;
 pub mod van_der_pol;
