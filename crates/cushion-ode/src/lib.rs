@@ -1,7 +1,8 @@
 //! `cushion-ode`: an adaptive Dormand–Prince 5(4) integrator with dense output, event
 //! detection and location, time stops and Hairer's stiffness test; an adaptive, L-stable
 //! Rosenbrock method (Hairer and Wanner's RODAS) for stiff problems; and fixed-step classical
-//! RK4 and explicit Euler; all behind the same interface and the same loop.
+//! RK4 and explicit Euler; automatic switching between DOPRI5 and the Rosenbrock method
+//! ([`auto`]); all behind the same interface and the same loop.
 //!
 //! It knows ODEs and nothing else. The shape follows SciPy's `integrate/_ivp` and
 //! DifferentialEquations.jl: a system ([`OdeSystem`]) is the problem, [`SolverOptions`] picks the
@@ -22,6 +23,7 @@
 // check too: clippy would have it written otherwise.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::nonminimal_bool)]
 
+pub mod auto;
 pub mod controller;
 pub mod dense;
 pub mod dopri5;

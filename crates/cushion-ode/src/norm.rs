@@ -10,6 +10,27 @@ pub(crate) struct Weights<const N: usize> {
 }
 
 impl<const N: usize> Weights<N> {
+    /// The settings' tolerances, one number per component.
+    pub fn of(opts: &crate::SolverOptions) -> Self {
+        let mut rtol = State::<N>::zeros();
+        let mut atol = State::<N>::zeros();
+        for i in 0..N {
+            rtol[i] = opts.rtol.get(i);
+            atol[i] = opts.atol.get(i);
+        }
+        Weights { rtol, atol }
+    }
+
+    /// The scale of each component at `y`: `atol + rtol |y|`.
+    #[inline]
+    pub fn scale(&self, y: &State<N>) -> State<N> {
+        let mut sk = self.atol;
+        for i in 0..N {
+            sk[i] += self.rtol[i] * y[i].abs();
+        }
+        sk
+    }
+
     /// RMS norm of `err` scaled by `atol + rtol * max(|y0|, |y1|)`.
     #[inline]
     pub fn error_norm(&self, err: &State<N>, y0: &State<N>, y1: &State<N>) -> f64 {

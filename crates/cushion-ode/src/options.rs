@@ -12,6 +12,9 @@ pub enum Method {
     /// Jacobian (the system's or by finite differences), predictive control, 3rd-order dense
     /// output.
     Rodas,
+    /// DOPRI5 while the problem is not stiff, Rodas while it is, switching with hysteresis
+    /// (`auto.rs`).
+    Auto,
     /// Classical 4th-order Runge–Kutta with a fixed step `SolverOptions::fixed_step`.
     Rk4,
     /// Explicit Euler with a fixed step `SolverOptions::fixed_step`.
@@ -19,21 +22,26 @@ pub enum Method {
 }
 
 impl Method {
-    /// The name users type (`dp5`, `rodas`, `rk4`, `euler`).
+    /// The name users type (`dp5`, `rodas`, `auto`, `rk4`, `euler`).
     pub fn name(self) -> &'static str {
         match self {
             Method::Dp5 => "dp5",
             Method::Rodas => "rodas",
+            Method::Auto => "auto",
             Method::Rk4 => "rk4",
             Method::Euler => "euler",
         }
     }
+
+    /// Every method's name, in the order users see them.
+    pub const NAMES: [&'static str; 5] = ["dp5", "rodas", "auto", "rk4", "euler"];
 
     /// Parse a user's name; `None` if unknown.
     pub fn from_name(s: &str) -> Option<Method> {
         match s {
             "dp5" => Some(Method::Dp5),
             "rodas" => Some(Method::Rodas),
+            "auto" => Some(Method::Auto),
             "rk4" => Some(Method::Rk4),
             "euler" => Some(Method::Euler),
             _ => None,
@@ -42,7 +50,7 @@ impl Method {
 
     /// Whether the step size adapts to an error estimate.
     pub fn is_adaptive(self) -> bool {
-        matches!(self, Method::Dp5 | Method::Rodas)
+        matches!(self, Method::Dp5 | Method::Rodas | Method::Auto)
     }
 }
 

@@ -116,15 +116,17 @@ impl<const N: usize> Rodas<N> {
         }
     }
 
+    /// `df/dy` at the start of the last attempt.
+    pub(crate) fn jacobian(&self) -> &Matrix<N> {
+        &self.jac
+    }
+
     /// `df/dy` and `df/dt` at `(t, y)`, where `f0 = f(t, y)`: the system's own where it has
     /// them, else finite differences (`jacobian.rs`).
     fn evaluate_jacobian<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>, f0: &State<N>) {
-        self.jac = sys
-            .jacobian(t, y)
-            .unwrap_or_else(|| finite_difference_jacobian(sys, t, y, f0));
-        self.dfdt = sys
-            .time_derivative(t, y)
-            .unwrap_or_else(|| finite_difference_time_derivative(sys, t, y, f0));
+        let (jac, dfdt) = sys.jacobians(t, y);
+        self.jac = jac.unwrap_or_else(|| finite_difference_jacobian(sys, t, y, f0));
+        self.dfdt = dfdt.unwrap_or_else(|| finite_difference_time_derivative(sys, t, y, f0));
         self.jacobian_current = true;
         self.jacobian_evals += 1;
     }

@@ -45,11 +45,14 @@ pub struct Stats {
     /// Attempts that failed in the linear algebra: a singular iteration matrix (or, for a
     /// Newton-based method, Newton not converging). Each is also a rejected step.
     pub failed_solves: u64,
+    /// Changes of method (`Method::Auto`), either way.
+    pub method_switches: u64,
     /// Events handled (crossings located), not counting time stops.
     pub events: u64,
     /// Time stops stepped onto.
     pub time_stops: u64,
-    /// Whether the stiffness test fired.
+    /// Whether the stiffness test fired (`Method::Auto`: whether it switched to the implicit
+    /// method).
     pub stiff: bool,
     /// When the stiff run of steps that made it fire began.
     pub stiff_since: Option<f64>,

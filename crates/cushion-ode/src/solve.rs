@@ -1,6 +1,7 @@
 //! The integration loop: step, control, events, time stops, output. It orchestrates; each of
 //! those ideas lives in its own file.
 
+use crate::auto::AutoSwitch;
 use crate::controller::{initial_step, Controller};
 use crate::dense::DenseOutput;
 use crate::dopri5::Dopri5;
@@ -29,6 +30,7 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
         // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
         Method::Dp5 => integration.run(&mut Dopri5::<N>::new()),
         Method::Rodas => integration.run(&mut Rodas::<N>::new()),
+        Method::Auto => integration.run(&mut AutoSwitch::<N>::new(opts)),
         Method::Rk4 => integration.run(&mut ExplicitRk::<N>::new(&CLASSICAL_RK4)),
         Method::Euler => integration.run(&mut ExplicitRk::<N>::new(&EXPLICIT_EULER)),
     }
@@ -62,12 +64,6 @@ struct Integration<'a, S, const N: usize> {
 
 impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     fn new(sys: &'a mut S, t0: f64, y0: State<N>, t_end: f64, opts: &'a SolverOptions) -> Self {
-        let mut rtol = State::<N>::zeros();
-        let mut atol = State::<N>::zeros();
-        for i in 0..N {
-            rtol[i] = opts.rtol.get(i);
-            atol[i] = opts.atol.get(i);
-        }
         let n_events = sys.event_count();
         let mut stops: Vec<f64> = opts
             .time_stops
@@ -86,7 +82,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             y: y0,
             f: State::<N>::zeros(),
             stats: Stats::default(),
-            weights: Weights { rtol, atol },
+            weights: Weights::of(opts),
             stops,
             n_events,
             events: EventScan::new(n_events, opts),
@@ -326,6 +322,15 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 },
                 &mut ctl,
             );
+            if let Some(switch) = stepper.take_switch() {
+                if switch.to == Method::Rodas && !self.stats.stiff {
+                    self.stats.stiff = true;
+                    self.stats.stiff_since = Some(switch.since);
+                }
+                self.sys.on_switch(t_new, &y_new, switch.to);
+                controller = stepper.controller(self.opts);
+                h_new = h_new.min(switch.h_max);
+            }
             self.t = t_new;
             self.y = y_new;
             self.take_new_stops(&mut ctl);

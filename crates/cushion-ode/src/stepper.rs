@@ -84,6 +84,13 @@ pub trait Stepper<const N: usize> {
     /// A handler changed the state or the regime of `f`: nothing cached still holds.
     #[inline]
     fn restart(&mut self) {}
+    /// After an accepted step (its dense output used, its observers told): a composite method's
+    /// change of method from the next step on ([`crate::auto`]). The loop then takes the new
+    /// method's controller.
+    #[inline]
+    fn take_switch(&mut self) -> Option<crate::auto::Switch> {
+        None
+    }
     /// Add the method's own counts (Jacobians, factorizations) to `stats`.
     #[inline]
     fn add_counts(&self, _stats: &mut Stats) {}
@@ -127,6 +134,11 @@ impl<S: OdeSystem<N>, const N: usize> OdeSystem<N> for Counted<'_, S> {
     #[inline]
     fn time_derivative(&self, t: f64, y: &State<N>) -> Option<State<N>> {
         self.sys.time_derivative(t, y)
+    }
+
+    #[inline]
+    fn jacobians(&self, t: f64, y: &State<N>) -> (Option<Matrix<N>>, Option<State<N>>) {
+        self.sys.jacobians(t, y)
     }
 }
 

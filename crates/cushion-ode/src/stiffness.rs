@@ -12,7 +12,7 @@
 //! (`stifftol = 9/10` of the method's stability size). A step bound by the accuracy of a fast
 //! mode keeps its `h |lambda|` below it: that mode's error would exceed the tolerance first.
 
-use crate::State;
+use crate::{Matrix, State};
 
 /// Hairer's estimate `h |lambda| = h ||f(y1) - f(z)|| / ||y1 - z||` from the step's end `y1`
 /// and the last stage's input `z`, both at `t + h`; `None` when they coincide.
@@ -73,6 +73,49 @@ impl StiffnessDetector {
         }
         None
     }
+}
+
+/// Power iterations of [`spectral_radius`]: the first [`WARM_UP`] turn the start vector
+/// towards the dominant eigenvectors, the rest measure the growth.
+const POWER_ITERATIONS: usize = 12;
+const WARM_UP: usize = 4;
+
+/// An estimate of the spectral radius of `jac` (the largest `|lambda|`), by power iteration
+/// on `D^-1 J D` with `D = diag(scale)` (the components' tolerance scales: a similarity, so
+/// the eigenvalues are those of `J`, while the states' units, metres beside pascals, no
+/// longer decide the start). The growth `|B^m v| / |v|` over the last `m` iterations, taken
+/// to the power `1/m`, converges to the spectral radius for a dominant real eigenvalue and
+/// for a dominant complex pair alike (where the ratio of one iteration oscillates). A
+/// transient of a non-normal matrix can only make it larger, which is the safe side for
+/// deciding that an explicit method is stable. `0` for a nilpotent or zero `J`, infinite when
+/// `J` is not finite.
+pub fn spectral_radius<const N: usize>(jac: &Matrix<N>, scale: &State<N>) -> f64 {
+    // a start vector that no structure of the problem makes orthogonal to an eigenvector
+    let mut v = State::<N>::from_fn(|i, _| 1.0 / (1.0 + 0.618 * i as f64));
+    v /= v.norm();
+    let mut log_growth = 0.0;
+    for k in 0..POWER_ITERATIONS {
+        let mut u = v;
+        for i in 0..N {
+            u[i] *= scale[i];
+        }
+        let mut w = jac * u;
+        for i in 0..N {
+            w[i] /= scale[i];
+        }
+        let norm = w.norm();
+        if norm == 0.0 {
+            return 0.0;
+        }
+        if !norm.is_finite() {
+            return f64::INFINITY;
+        }
+        if k >= WARM_UP {
+            log_growth += norm.ln();
+        }
+        v = w / norm;
+    }
+    (log_growth / (POWER_ITERATIONS - WARM_UP) as f64).exp()
 }
 
 #[cfg(test)]
@@ -148,5 +191,25 @@ mod tests {
             assert_eq!(d.observe(i as f64, 4.0), None);
         }
         assert_eq!(d.observe(19.0, 4.0), Some(0.0));
+    }
+
+    #[test]
+    fn spectral_radius_of_real_and_complex_spectra_whatever_the_units() {
+        // a stiff spring-damper (eigenvalues -10 and -1e4, real) with states in units 1e6
+        // apart, and an undamped oscillator (+-1e3 i), each within 20 %
+        let scale = State::<3>::new(1e-9, 1e-3, 1.0);
+        let mut j = Matrix::<3>::zeros();
+        // x' = v, v' = -1e5 x - 10010 v: roots of s^2 + 10010 s + 1e5 = 0 are -10 and -1e4
+        j[(0, 1)] = 1.0;
+        j[(1, 0)] = -1e5;
+        j[(1, 1)] = -10010.0;
+        let rho = spectral_radius(&j, &scale);
+        assert!((rho / 1e4 - 1.0).abs() < 0.2, "{rho}");
+        let mut osc = Matrix::<3>::zeros();
+        osc[(0, 1)] = 1.0;
+        osc[(1, 0)] = -1e6;
+        let rho = spectral_radius(&osc, &scale);
+        assert!((rho / 1e3 - 1.0).abs() < 0.2, "{rho}");
+        assert_eq!(spectral_radius(&Matrix::<3>::zeros(), &scale), 0.0);
     }
 }

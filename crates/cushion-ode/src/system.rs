@@ -113,6 +113,13 @@ pub trait OdeSystem<const N: usize> {
         None
     }
 
+    /// `df/dy` and `df/dt` together, for a system that computes both in one pass (the
+    /// implicit method asks this way, once per starting point). The default asks
+    /// [`OdeSystem::jacobian`] and [`OdeSystem::time_derivative`].
+    fn jacobians(&self, t: f64, y: &State<N>) -> (Option<Matrix<N>>, Option<State<N>>) {
+        (self.jacobian(t, y), self.time_derivative(t, y))
+    }
+
     /// How many event functions there are (at most [`MAX_EVENTS`]).
     fn event_count(&self) -> usize {
         0
@@ -184,6 +191,10 @@ pub trait OdeSystem<const N: usize> {
     fn on_time_stop(&mut self, _t: f64, _y: &mut State<N>, _ctl: &mut Control) -> EventAction {
         EventAction::Continue
     }
+
+    /// Called when `Method::Auto` changes method, at `(t, y)`, between two steps: `to` takes
+    /// the next one.
+    fn on_switch(&mut self, _t: f64, _y: &State<N>, _to: crate::Method) {}
 
     /// Called after every accepted step (after events cut it); may call `ctl.stop()`.
     fn on_step(&mut self, _step: &Step<'_, N>, _ctl: &mut Control) {}

@@ -4,6 +4,7 @@
 pub mod arenstorf;
 pub mod bouncing_ball;
 pub mod exponential;
+pub mod fading_stiffness;
 pub mod hires;
 pub mod manufactured;
 pub mod orego;
