@@ -165,7 +165,7 @@ fn same_rows_whatever_the_thread_count() {
         "{header}"
     );
     assert!(
-        header.ends_with(",stats_steps,stats_rejected,stats_rhs_evals,stats_events,stats_stiff")
+        header.ends_with(",stats_steps,stats_rejected,stats_rhs_evals,stats_events,stats_stiff,stats_jacobians,stats_lu_decompositions,stats_method_switches")
     );
     assert_eq!(lines.count(), 30);
     assert_eq!(

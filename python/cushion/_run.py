@@ -150,7 +150,9 @@ def simulate(
         ``cushion simulate --set``; :func:`cushion.keys` lists them).
     rtol, atol, method
         Shorthands for ``solver.rtol``, ``solver.atol`` and ``solver.method`` (``"dp5"``,
-        the default; ``"rodas"``, an implicit method for stiff scenes; ``"rk4"``, ``"euler"``).
+        the default; ``"rodas"``, an implicit method for stiff scenes; ``"auto"``, dp5 while
+        the scene is not stiff and rodas while it is, e.g. a compressible liquid;
+        ``"rk4"``, ``"euler"``).
     trajectory
         Record the trajectory (``False`` is faster when only the summary is wanted).
     sample_interval

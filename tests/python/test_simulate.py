@@ -162,3 +162,17 @@ def test_the_implicit_method_from_python_equals_the_command_line(cli_json):
     run = cushion.simulate(ROOT / "sweeps/scenes/paper-bistable-dt10.toml", method="rodas", trajectory=False)
     assert same(run.summary, cli_json(ROOT / "sweeps/scenes/paper-bistable-dt10.toml", "--set", "solver.method=rodas"))
     assert run.status == "ok"
+
+
+def test_auto_solves_the_compressible_liquid_and_logs_its_switch(cli_json):
+    scene = ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"
+    liquid = {"hydraulic.bulk_modulus": 1.5e9}
+    run = cushion.simulate(scene, set=liquid, method="auto")
+    assert same(run.summary, cli_json(scene, "--set", "hydraulic.bulk_modulus=1.5e9", "--set", "solver.method=auto"))
+    assert run.status == "ok"
+    assert run.stats["method_switches"] >= 1 and run.stats["jacobians"] > 0
+    switches = run.events[run.events["event"] == "switch_to_rodas"]
+    assert len(switches) == run.stats["method_switches"]
+    # the lumped model's peak force is within 2e-4 of the compressible one's (docs/model.md)
+    lumped = cushion.simulate(scene, trajectory=False)
+    assert abs(run.summary["peak_robot_force"] / lumped.summary["peak_robot_force"] - 1) < 2e-4

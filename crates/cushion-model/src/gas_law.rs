@@ -67,6 +67,11 @@ impl GasLaw {
         crate::physics::gas_pressure(self.p10, self.v_g0, self.area, self.kappa, s)
     }
 
+    /// `dp1/ds` at `s`, where the pressure is `p` (Pa/m): `kappa p area / (V_g0 - area s)`.
+    pub fn slope(&self, s: f64, p: f64) -> f64 {
+        self.kappa * p * self.area / (self.v_g0 - self.area * s)
+    }
+
     /// `p1(s)` (Pa): the series about the anchor when `s` is near it, else the exact law (and
     /// the anchor moves to `s`).
     #[inline]

@@ -33,12 +33,14 @@
 //! Here: the layout, the scene's numbers and the assembly (`Model::new`). The rest, one idea a
 //! file: `model/forces.rs` the physics at an instant, `model/events.rs` the event functions and
 //! what each does, `model/ode_system.rs` the model as the integrator sees it,
+//! `model/jacobian.rs` its derivatives for the implicit method,
 //! `model/observe.rs` the peaks' samples at each step, `model/early_end.rs` when nothing can
 //! change any more.
 
 mod early_end;
 mod events;
 mod forces;
+mod jacobian;
 mod observe;
 mod ode_system;
 

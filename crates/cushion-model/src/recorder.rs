@@ -3,7 +3,7 @@
 //! each step's dense output; `simulate` composes it with the model ([`Observed`]) only when a
 //! trajectory is asked for.
 
-use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
+use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
 use crate::model::{to_point, Model};
 use crate::trajectory::TrajectoryPoint;
@@ -72,6 +72,25 @@ impl<const N: usize> OdeSystem<N> for Observed {
     #[inline]
     fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
         OdeSystem::<N>::rhs(&self.model, t, y)
+    }
+    #[inline]
+    fn jacobian(&self, t: f64, y: &State<N>) -> Option<Matrix<N>> {
+        OdeSystem::<N>::jacobian(&self.model, t, y)
+    }
+    #[inline]
+    fn time_derivative(&self, t: f64, y: &State<N>) -> Option<State<N>> {
+        OdeSystem::<N>::time_derivative(&self.model, t, y)
+    }
+    #[inline]
+    fn jacobians(&self, t: f64, y: &State<N>) -> (Option<Matrix<N>>, Option<State<N>>) {
+        OdeSystem::<N>::jacobians(&self.model, t, y)
+    }
+    #[inline]
+    fn on_switch(&mut self, t: f64, y: &State<N>, to: Method) {
+        OdeSystem::<N>::on_switch(&mut self.model, t, y, to);
+        if let Some(r) = self.recorder.as_mut() {
+            r.take_events(&self.model);
+        }
     }
     #[inline]
     fn event_count(&self) -> usize {

@@ -394,6 +394,9 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             rhs_evals: out.stats.rhs_evals,
             events: out.stats.events,
             stiff: out.stats.stiff,
+            jacobians: out.stats.jacobian_evals,
+            lu_decompositions: out.stats.lu_decompositions,
+            method_switches: out.stats.method_switches,
         },
     };
     // After an early end, the uniform samples up to t_end come from the extrapolation; without

@@ -36,6 +36,11 @@ pub struct SolverStats {
     pub rhs_evals: u64,
     pub events: u64,
     pub stiff: bool,
+    /// Jacobians evaluated and LU factorizations made (the implicit method; 0 under dp5).
+    pub jacobians: u64,
+    pub lu_decompositions: u64,
+    /// Changes of method under `solver.method = "auto"`, either way.
+    pub method_switches: u64,
 }
 
 /// One run's results. Forces in N (signed along +x), times in s, speeds in m/s, momentum in
@@ -112,6 +117,9 @@ impl Summary {
         "stats_rhs_evals",
         "stats_events",
         "stats_stiff",
+        "stats_jacobians",
+        "stats_lu_decompositions",
+        "stats_method_switches",
     ];
 
     /// The cells of this summary, in the order of [`Summary::COLUMNS`].
@@ -140,6 +148,9 @@ impl Summary {
             Cell::Int(self.stats.rhs_evals),
             Cell::Int(self.stats.events),
             Cell::Bool(self.stats.stiff),
+            Cell::Int(self.stats.jacobians),
+            Cell::Int(self.stats.lu_decompositions),
+            Cell::Int(self.stats.method_switches),
         ]
     }
 

@@ -189,7 +189,14 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
         }
     }
 
-    fn dense(&self, t: f64, h: f64, y0: &State<N>, f0: &State<N>, a: &Attempt<N>) -> DenseOutput<N> {
+    fn dense(
+        &self,
+        t: f64,
+        h: f64,
+        y0: &State<N>,
+        f0: &State<N>,
+        a: &Attempt<N>,
+    ) -> DenseOutput<N> {
         if self.stiff {
             self.implicit.dense(t, h, y0, f0, a)
         } else {
@@ -283,7 +290,13 @@ mod tests {
             h_max: f64::INFINITY,
         };
         let mut needed = Vec::new();
-        for to in [Method::Rodas, Method::Dp5, Method::Rodas, Method::Dp5, Method::Rodas] {
+        for to in [
+            Method::Rodas,
+            Method::Dp5,
+            Method::Rodas,
+            Method::Dp5,
+            Method::Rodas,
+        ] {
             a.pending = Some(switch(to));
             assert_eq!(a.take_switch().map(|s| s.to), Some(to));
             assert_eq!(a.current(), to);

@@ -97,8 +97,20 @@ fn fading_stiffness_switches_to_rodas_and_back_and_meets_the_closed_form() {
 fn a_problem_that_is_never_stiff_is_dopri5_to_the_bit() {
     let y0 = arenstorf::initial_state();
     let t_end = arenstorf::PERIOD;
-    let auto = solve(&mut Arenstorf, 0.0, y0, t_end, &opts(Method::Auto, 1e-9, 1e-9));
-    let dp5 = solve(&mut Arenstorf, 0.0, y0, t_end, &opts(Method::Dp5, 1e-9, 1e-9));
+    let auto = solve(
+        &mut Arenstorf,
+        0.0,
+        y0,
+        t_end,
+        &opts(Method::Auto, 1e-9, 1e-9),
+    );
+    let dp5 = solve(
+        &mut Arenstorf,
+        0.0,
+        y0,
+        t_end,
+        &opts(Method::Dp5, 1e-9, 1e-9),
+    );
     assert_eq!(auto.status, Status::Success);
     assert_eq!(auto.y, dp5.y);
     assert_eq!(auto.stats, dp5.stats);
@@ -117,7 +129,15 @@ fn van_der_pol_mu_1e3_costs_less_than_either_method_alone() {
         &opts(Method::Dp5, 1e-13, 1e-13),
     );
     let (rtol, atol) = (1e-6, 1e-6);
-    let run = |m| solve(&mut VanDerPol { mu: 1e3 }, 0.0, y0, 2.0, &opts(m, rtol, atol));
+    let run = |m| {
+        solve(
+            &mut VanDerPol { mu: 1e3 },
+            0.0,
+            y0,
+            2.0,
+            &opts(m, rtol, atol),
+        )
+    };
     let (auto, dp5, rodas) = (run(Method::Auto), run(Method::Dp5), run(Method::Rodas));
     assert_eq!(auto.status, Status::Success, "{}", auto.message);
     let mixed = (0..2)

@@ -49,6 +49,9 @@ METRICS: dict[str, Quantity] = {
     "stats_rhs_evals": Quantity("right-hand-side evaluations", "-"),
     "stats_events": Quantity("events", "-"),
     "stats_stiff": Quantity("stiffness flagged", "-"),
+    "stats_jacobians": Quantity("Jacobians", "-"),
+    "stats_lu_decompositions": Quantity("LU factorizations", "-"),
+    "stats_method_switches": Quantity("method switches", "-"),
 }
 
 #: Scene keys shown in other words or units than ``cushion.keys()`` gives; every other key is

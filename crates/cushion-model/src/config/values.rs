@@ -138,7 +138,7 @@ impl KeyValue for RobotStart {
 
 impl KeyValue for Method {
     fn from_value(key: &str, v: &toml::Value) -> Result<Self, ConfigError> {
-        choice(key, v, &["dp5", "rodas", "rk4", "euler"], Method::from_name)
+        choice(key, v, &Method::NAMES, Method::from_name)
     }
     fn to_value(&self) -> toml::Value {
         toml::Value::String(self.name().into())

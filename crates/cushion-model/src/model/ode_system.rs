@@ -4,7 +4,7 @@
 use super::events::{EventKinematics, EV_BACK, EV_CAVITATION, EV_FWD, EV_OBJECT, EV_SENSOR};
 use super::Model;
 use crate::config::Module;
-use cushion_ode::{Control, Direction, EventAction, OdeSystem, State, Step};
+use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
 impl<const N: usize> OdeSystem<N> for Model {
     #[inline]
@@ -46,6 +46,19 @@ impl<const N: usize> OdeSystem<N> for Model {
             dy[k] = e.p_liquid;
         }
         dy
+    }
+
+    fn jacobian(&self, t: f64, y: &State<N>) -> Option<Matrix<N>> {
+        Some(self.jacobians(t, y, &self.regime).0)
+    }
+
+    fn time_derivative(&self, t: f64, y: &State<N>) -> Option<State<N>> {
+        Some(self.jacobians(t, y, &self.regime).1)
+    }
+
+    fn jacobians(&self, t: f64, y: &State<N>) -> (Option<Matrix<N>>, Option<State<N>>) {
+        let (jac, dfdt) = Model::jacobians(self, t, y, &self.regime);
+        (Some(jac), Some(dfdt))
     }
 
     fn event_count(&self) -> usize {
@@ -131,6 +144,16 @@ impl<const N: usize> OdeSystem<N> for Model {
             }
         }
         EventAction::Continue
+    }
+
+    /// A change of method under `solver.method = "auto"` is logged as an event
+    /// (`switch_to_rodas`, `switch_to_dp5`): it tells where the scene was stiff.
+    fn on_switch(&mut self, t: f64, y: &State<N>, to: Method) {
+        let name = match to {
+            Method::Rodas => "switch_to_rodas",
+            _ => "switch_to_dp5",
+        };
+        self.log_event(name, t, y.as_slice());
     }
 
     fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {

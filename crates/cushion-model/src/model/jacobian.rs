@@ -1,0 +1,542 @@
+//! The model's Jacobian `df/dy` and `df/dt`, exact, for the implicit method: the same physics
+//! as `forces.rs`, part by part, each quantity carried with its gradient (forward-mode
+//! differentiation by hand: [`D`] is a value and its derivatives in the six dynamic states and
+//! time). The ledger's quadratures and the contact impulse feed back into nothing, so their
+//! columns are zero; their rows are the derivatives of their power terms, which the
+//! Rosenbrock method needs for its order on those components too.
+//!
+//! Within a regime the right-hand side is smooth (every kink is an event), so the derivative
+//! is that of the regime's branch. Guarded by
+//! `tests::the_jacobian_matches_finite_differences_in_every_regime`.
+
+use super::{Model, Regime};
+use crate::config::Module;
+use crate::physics;
+use cushion_ode::{Matrix, State};
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+/// The variables a gradient runs over: tool, liquid and object states, and time.
+const XT: usize = 0;
+const VT: usize = 1;
+const PM: usize = 2;
+const VX: usize = 3;
+const XP: usize = 4;
+const VP: usize = 5;
+const T: usize = 6;
+const VARS: usize = 7;
+
+/// A value with its gradient in `x_t, v_t, p_m, V_x, x_p, v_p, t`.
+#[derive(Clone, Copy, Debug, Default)]
+struct D {
+    v: f64,
+    g: [f64; VARS],
+}
+
+impl D {
+    fn constant(v: f64) -> D {
+        D { v, g: [0.0; VARS] }
+    }
+
+    /// The variable `i` at value `v`.
+    fn var(v: f64, i: usize) -> D {
+        let mut g = [0.0; VARS];
+        g[i] = 1.0;
+        D { v, g }
+    }
+
+    /// `f(self)` with `f' = slope` at `self.v`.
+    fn chain(self, v: f64, slope: f64) -> D {
+        D {
+            v,
+            g: self.g.map(|x| x * slope),
+        }
+    }
+
+    /// `d^1.5` for `d > 0`, else 0.
+    fn pos15(self) -> D {
+        if self.v > 0.0 {
+            let r = self.v.sqrt();
+            self.chain(self.v * r, 1.5 * r)
+        } else {
+            D::constant(0.0)
+        }
+    }
+}
+
+impl Add for D {
+    type Output = D;
+    fn add(self, o: D) -> D {
+        D {
+            v: self.v + o.v,
+            g: std::array::from_fn(|i| self.g[i] + o.g[i]),
+        }
+    }
+}
+
+impl Sub for D {
+    type Output = D;
+    fn sub(self, o: D) -> D {
+        self + (-o)
+    }
+}
+
+impl Neg for D {
+    type Output = D;
+    fn neg(self) -> D {
+        self * -1.0
+    }
+}
+
+impl Mul for D {
+    type Output = D;
+    fn mul(self, o: D) -> D {
+        D {
+            v: self.v * o.v,
+            g: std::array::from_fn(|i| self.g[i] * o.v + self.v * o.g[i]),
+        }
+    }
+}
+
+impl Mul<f64> for D {
+    type Output = D;
+    fn mul(self, k: f64) -> D {
+        D {
+            v: self.v * k,
+            g: self.g.map(|x| x * k),
+        }
+    }
+}
+
+impl Div for D {
+    type Output = D;
+    fn div(self, o: D) -> D {
+        let q = self.v / o.v;
+        D {
+            v: q,
+            g: std::array::from_fn(|i| (self.g[i] - q * o.g[i]) / o.v),
+        }
+    }
+}
+
+impl Div<f64> for D {
+    type Output = D;
+    fn div(self, k: f64) -> D {
+        self * (1.0 / k)
+    }
+}
+
+/// Hunt–Crossley force `d^1.5 (k + chi dd)` (0 once released), as in `forces.rs`.
+fn contact_force(k: f64, chi: f64, d: D, dd: D, released: bool) -> D {
+    if released {
+        D::constant(0.0)
+    } else {
+        d.pos15() * (dd * chi + D::constant(k))
+    }
+}
+
+/// The right-hand side's terms with their gradients.
+struct Terms {
+    v_t: D,
+    a_t: D,
+    v_p: D,
+    a_p: D,
+    p_work: D,
+    p_orifice: D,
+    p_friction: D,
+    p_contact: D,
+    p_plane: D,
+    f_c: D,
+    dp_m: D,
+    flow: D,
+    p_liquid: D,
+}
+
+impl Model {
+    /// `df/dy` and `df/dt` at `(t, y)` in regime `r`.
+    pub(crate) fn jacobians<const N: usize>(
+        &self,
+        t: f64,
+        y: &State<N>,
+        r: &Regime,
+    ) -> (Matrix<N>, State<N>) {
+        let e = self.terms(t, y.as_slice(), r);
+        let l = &self.layout;
+        // the state index of each variable of a gradient
+        let mut column = [None; VARS - 1];
+        if let Some(i) = l.tool {
+            column[XT] = Some(i);
+            column[VT] = Some(i + 1);
+        }
+        if let Some(q) = l.liquid {
+            column[PM] = Some(q);
+            column[VX] = Some(q + 1);
+        }
+        if let Some(j) = l.object {
+            column[XP] = Some(j);
+            column[VP] = Some(j + 1);
+        }
+        let mut jac = Matrix::<N>::zeros();
+        let mut dfdt = State::<N>::zeros();
+        let mut row = |k: usize, d: &D| {
+            for (var, c) in column.iter().enumerate() {
+                if let Some(c) = c {
+                    jac[(k, *c)] = d.g[var];
+                }
+            }
+            dfdt[k] = d.g[T];
+        };
+        if let Some(i) = l.tool {
+            row(i, &e.v_t);
+            row(i + 1, &e.a_t);
+        }
+        if let Some(j) = l.object {
+            let v_p = if r.obj_stuck { D::constant(0.0) } else { e.v_p };
+            row(j, &v_p);
+            row(j + 1, &e.a_p);
+        }
+        let rows = [
+            (l.work, &e.p_work),
+            (l.d_orifice, &e.p_orifice),
+            (l.d_friction, &e.p_friction),
+            (l.d_contact, &e.p_contact),
+            (l.d_plane, &e.p_plane),
+            (l.contact_impulse, &e.f_c),
+            (l.e_liquid, &e.p_liquid),
+        ];
+        for (k, d) in rows {
+            if let Some(k) = k {
+                row(k, d);
+            }
+        }
+        if let Some(q) = l.liquid {
+            row(q, &e.dp_m);
+            row(q + 1, &e.flow);
+        }
+        (jac, dfdt)
+    }
+
+    /// `forces.rs`'s `eval_inline`, each term with its gradient.
+    fn terms(&self, t: f64, y: &[f64], r: &Regime) -> Terms {
+        let p = &self.p;
+        let (x_r, v_r, a_r) = self.robot.current().at(t);
+        let mut xr = D::constant(x_r);
+        xr.g[T] = v_r;
+        let mut vr = D::constant(v_r);
+        vr.g[T] = a_r;
+        let ar = D::constant(a_r);
+        let zero = D::constant(0.0);
+        let mut e = Terms {
+            v_t: vr,
+            a_t: ar,
+            v_p: zero,
+            a_p: zero,
+            p_work: zero,
+            p_orifice: zero,
+            p_friction: zero,
+            p_contact: zero,
+            p_plane: zero,
+            f_c: zero,
+            dp_m: zero,
+            flow: zero,
+            p_liquid: zero,
+        };
+        let (mut x_t, mut v_t) = (xr, vr);
+        let (mut f_module, mut f_stop, mut sd) = (zero, zero, zero);
+        if let Some(i) = self.layout.tool {
+            x_t = D::var(y[i], XT);
+            v_t = D::var(y[i + 1], VT);
+            let s = xr - x_t;
+            sd = vr - v_t;
+            let (mut f_fwd, mut f_back) = (zero, zero);
+            if r.fwd {
+                let (d, dd) = (-s, -sd);
+                f_fwd = contact_force(p.k_e, p.chi_e, d, dd, r.stop_released);
+                e.p_contact = e.p_contact + (f_fwd - d.pos15() * p.k_e) * dd;
+            }
+            if r.back {
+                let d = s - D::constant(p.stroke);
+                f_back = contact_force(p.k_e, p.chi_e, d, sd, r.stop_released);
+                e.p_contact = e.p_contact + (f_back - d.pos15() * p.k_e) * sd;
+            }
+            f_stop = f_back - f_fwd;
+            match p.module {
+                Module::Hydraulic if self.layout.liquid.is_some() => {
+                    let q = self.layout.liquid.unwrap_or(0);
+                    let p_m = D::var(y[q], PM);
+                    let v_x = D::var(y[q + 1], VX);
+                    let p1 = self.gas.exact(v_x.v);
+                    let p1 = v_x.chain(p1, self.gas.slope(v_x.v, p1));
+                    let dp = p_m - p1;
+                    let k = p.a_o * (2.0 / (p.c0 * p.rho)).sqrt();
+                    let m = dp.v * dp.v + p.p_transition * p.p_transition;
+                    let flow = dp.chain(
+                        physics::orifice_flow(p.a_o, p.c0, p.rho, p.p_transition, dp.v),
+                        k * (0.5 * dp.v * dp.v + p.p_transition * p.p_transition)
+                            / (m * m.sqrt().sqrt()),
+                    );
+                    let displaced = sd * p.a_p - flow;
+                    let v_m = D::constant(p.v_m0) - s * p.a_p;
+                    e.dp_m = displaced * p.beta / v_m;
+                    e.flow = flow;
+                    f_module = p_m * p.a_p;
+                    e.p_orifice = dp * flow;
+                    e.p_liquid = p_m * displaced;
+                }
+                Module::Hydraulic => {
+                    let p1 = self.gas.exact(s.v);
+                    let p1 = s.chain(p1, self.gas.slope(s.v, p1));
+                    let ratio = p.a_p / p.a_o;
+                    let c = 0.5 * p.c0 * p.rho * ratio * ratio;
+                    let mut dp = sd.chain(c * sd.v * sd.v.abs(), 2.0 * c * sd.v.abs());
+                    if r.cavitating {
+                        dp = D::constant(p.p_cav.unwrap_or(0.0)) - p1;
+                    }
+                    f_module = (p1 + dp) * p.a_p;
+                    e.p_orifice = dp * sd * p.a_p;
+                }
+                Module::Bistable => {
+                    let x = s + D::constant(p.e);
+                    let (w2, l0) = (p.w * p.w, (p.w * p.w + p.h * p.h).sqrt());
+                    let u = p.h - x.v;
+                    let l = (w2 + u * u).sqrt();
+                    // dF/dx = -2 k_b (L0 w^2 / l^3 - 1)
+                    let slope = -2.0 * p.k_b * (l0 * w2 / (l * l * l) - 1.0);
+                    f_module = x.chain(physics::bistable_force(p.k_b, p.w, p.h, x.v), slope);
+                }
+                Module::Rigid => {}
+            }
+        }
+        e.v_t = v_t;
+        if let Some(j) = self.layout.object {
+            let x_p = D::var(y[j], XP);
+            let v_p = D::var(y[j + 1], VP);
+            e.v_p = v_p;
+            if r.obj_contact {
+                let (d, dd) = (x_t - x_p, v_t - v_p);
+                e.f_c = contact_force(p.k_c, p.chi_c, d, dd, r.obj_released);
+                e.p_contact = e.p_contact + (e.f_c - d.pos15() * p.k_c) * dd;
+            }
+        }
+        let g;
+        if p.module == Module::Rigid || r.tool_stuck {
+            e.a_t = ar;
+            g = ar * p.m_t + e.f_c;
+            if p.module != Module::Rigid {
+                let f_f = g - f_module - f_stop;
+                e.p_friction = f_f * sd;
+            }
+        } else {
+            let f_f = sd * p.b + D::constant(p.d * r.tool_dir);
+            g = f_module + f_f + f_stop;
+            e.a_t = (g - e.f_c) / p.m_t;
+            e.p_friction = f_f * sd;
+        }
+        e.p_work = g * vr;
+        if self.layout.object.is_some() {
+            if p.mu_n > 0.0 {
+                if r.obj_stuck {
+                    e.a_p = zero;
+                } else {
+                    e.a_p = (e.f_c - D::constant(p.mu_n)) / p.m_p;
+                    e.p_plane = e.v_p * p.mu_n;
+                }
+            } else {
+                e.a_p = e.f_c / p.m_p;
+            }
+        }
+        e
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Scene;
+
+    /// A small deterministic generator (no dependency for one test).
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+            self.0 = self
+                .0
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+        }
+    }
+
+    fn scene(sets: &[(&str, &str)]) -> Scene {
+        let mut s = Scene::default();
+        for (k, v) in sets {
+            s.set_from_str(k, v).unwrap();
+        }
+        s
+    }
+
+    /// `df/dy` and `df/dt` by central differences, with steps small against each
+    /// variable's scale.
+    fn central<const N: usize>(
+        m: &Model,
+        t: f64,
+        y: &State<N>,
+        scale: &[f64],
+    ) -> (Matrix<N>, State<N>) {
+        let f = |t: f64, y: &State<N>| cushion_ode::OdeSystem::<N>::rhs(m, t, y);
+        let mut jac = Matrix::<N>::zeros();
+        for c in 0..N {
+            let h = 1e-6 * scale[c];
+            let (mut a, mut b) = (*y, *y);
+            a[c] += h;
+            b[c] -= h;
+            jac.set_column(c, &((f(t, &a) - f(t, &b)) / (a[c] - b[c])));
+        }
+        let h = 1e-9;
+        (jac, (f(t + h, y) - f(t - h, y)) / (2.0 * h))
+    }
+
+    fn check<const N: usize>(name: &str, m: &Model, t: f64, y: &State<N>, scale: &[f64]) {
+        let (jac, dfdt) = m.jacobians(t, y, &m.regime);
+        let (fd, fd_t) = central(m, t, y, scale);
+        for k in 0..N {
+            // compare each row in the units of its columns' scales
+            let row_max = (0..N)
+                .map(|c| fd[(k, c)].abs() * scale[c])
+                .fold(fd_t[k].abs() * 1e-3, f64::max);
+            for c in 0..N {
+                let (a, b) = (jac[(k, c)] * scale[c], fd[(k, c)] * scale[c]);
+                assert!(
+                    (a - b).abs() <= 1e-5 * b.abs() + 1e-7 * row_max,
+                    "{name}: d f{k} / d y{c}: analytic {} finite differences {} ({:?})",
+                    jac[(k, c)],
+                    fd[(k, c)],
+                    m.regime
+                );
+            }
+            let (a, b) = (dfdt[k] * 1e-3, fd_t[k] * 1e-3);
+            assert!(
+                (a - b).abs() <= 1e-5 * b.abs() + 1e-7 * row_max,
+                "{name}: d f{k} / dt: analytic {} finite differences {} ({:?})",
+                dfdt[k],
+                fd_t[k],
+                m.regime
+            );
+        }
+    }
+
+    /// Random states in regime `regime` of the scene: each contact the regime has closed
+    /// penetrates (0.01 to 0.5 mm), speeds up to 1 m/s, the liquid's pressure about the
+    /// gas's.
+    fn states<const N: usize>(m: &Model, rng: &mut Lcg, t: f64) -> (State<N>, Vec<f64>) {
+        let l = m.layout;
+        let r = m.regime;
+        let (x_r, _, _) = m.robot.current().at(t);
+        let mut y = State::<N>::zeros();
+        let mut scale = vec![1.0; N];
+        let mut x_t = x_r;
+        if let Some(i) = l.tool {
+            let s = if r.fwd {
+                -rng.uniform(1e-5, 5e-4)
+            } else if r.back {
+                m.p.stroke + rng.uniform(1e-5, 5e-4)
+            } else {
+                rng.uniform(1e-3, m.p.stroke - 1e-3)
+            };
+            x_t = x_r - s;
+            y[i] = x_t;
+            y[i + 1] = rng.uniform(-1.0, 1.0);
+            scale[i] = 1e-3;
+        }
+        if let Some(q) = l.liquid {
+            let s = x_r - x_t;
+            y[q + 1] = m.p.a_p * s + rng.uniform(-1e-7, 1e-7);
+            y[q] = m.gas.exact(y[q + 1]) + rng.uniform(-500.0, 500.0);
+            scale[q] = 1e2;
+            scale[q + 1] = 1e-8;
+        }
+        if let Some(j) = l.object {
+            let d = if r.obj_contact {
+                rng.uniform(1e-5, 5e-4)
+            } else {
+                -rng.uniform(1e-4, 1e-3)
+            };
+            y[j] = x_t - d;
+            y[j + 1] = rng.uniform(-1.0, 1.0);
+            scale[j] = 1e-3;
+        }
+        (y, scale)
+    }
+
+    #[test]
+    fn the_jacobian_matches_finite_differences_in_every_regime() {
+        let ledger = ("energy.ledger", "true");
+        let scenes: [(&str, Vec<(&str, &str)>); 6] = [
+            ("hydraulic", vec![ledger]),
+            (
+                "compressible",
+                vec![ledger, ("hydraulic.bulk_modulus", "1.5e9")],
+            ),
+            ("bistable", vec![ledger, ("module", "bistable")]),
+            ("rigid", vec![ledger, ("module", "rigid")]),
+            (
+                "frictions",
+                vec![
+                    ledger,
+                    ("tool.dry_friction", "0.5"),
+                    ("object.plane_friction", "0.3"),
+                ],
+            ),
+            ("cavitation", vec![ledger, ("hydraulic.cavitation", "true")]),
+        ];
+        let mut rng = Lcg(7);
+        let mut checked = 0;
+        for (name, sets) in scenes {
+            let mut m = Model::new(&scene(&sets));
+            let n = m.layout.n;
+            for bits in 0..256u32 {
+                let bit = |k: u32| bits & (1 << k) != 0;
+                let r = Regime {
+                    fwd: bit(0),
+                    back: bit(1) && !bit(0),
+                    obj_contact: bit(2),
+                    stop_released: bit(3),
+                    obj_released: bit(4),
+                    tool_stuck: bit(5) && m.p.d > 0.0,
+                    tool_dir: if bit(6) { 1.0 } else { -1.0 },
+                    obj_stuck: bit(7) && m.p.mu_n > 0.0,
+                    cavitating: bit(3) && m.p.p_cav.is_some(),
+                    ..m.regime
+                };
+                if (!m.layout.object.is_some() && bit(2))
+                    || (m.p.module == Module::Rigid && bits & 0b1011 != 0)
+                {
+                    continue;
+                }
+                m.regime = r;
+                for _ in 0..3 {
+                    let t = rng.uniform(0.0, 0.05);
+                    macro_rules! at {
+                        ($n:literal) => {{
+                            let (y, scale) = states::<$n>(&m, &mut rng, t);
+                            check(name, &m, t, &y, &scale);
+                        }};
+                    }
+                    match n {
+                        4 => at!(4),
+                        5 => at!(5),
+                        6 => at!(6),
+                        7 => at!(7),
+                        8 => at!(8),
+                        9 => at!(9),
+                        10 => at!(10),
+                        11 => at!(11),
+                        12 => at!(12),
+                        _ => panic!("{name}: {n} states"),
+                    }
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 1000, "{checked}");
+    }
+}
