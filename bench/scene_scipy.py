@@ -52,54 +52,79 @@ def gas(s):
     return P10 * (VG0 / (VG0 - A_P * s)) ** KAPPA
 
 
-def make_rhs(robot):
-    """robot(t) -> (x_r, v_r) on one segment of the profile."""
+def tool_force(s, sd, k_e=K_E, chi_e=CHI_E):
+    """G, the lumped module's force on the tool along +x (gas and orifice on the piston,
+    viscous friction, both end-stops) at stroke s and its rate sd; the force on the robot is -G."""
+    dp = 0.5 * C0 * RHO * (A_P / A_O) ** 2 * sd * abs(sd)
+    f_fwd = hunt_crossley(k_e, chi_e, -s, -sd)
+    f_back = hunt_crossley(k_e, chi_e, s - L, sd)
+    return (gas(s) + dp) * A_P + B * sd + f_back - f_fwd
+
+
+def make_rhs(robot, k_e=K_E):
+    """robot(t) -> (x_r, v_r) on one segment of the profile; k_e the end-stops' stiffness."""
 
     def rhs(t, y):
         x_t, v_t, x_p, v_p = y
         x_r, v_r = robot(t)
-        s = x_r - x_t
-        sd = v_r - v_t
-        dp = 0.5 * C0 * RHO * (A_P / A_O) ** 2 * sd * abs(sd)
-        f_fwd = hunt_crossley(K_E, CHI_E, -s, -sd)
-        f_back = hunt_crossley(K_E, CHI_E, s - L, sd)
+        g = tool_force(x_r - x_t, v_r - v_t, k_e)
         f_c = hunt_crossley(K_C, CHI_C, x_t - x_p, v_t - v_p)
-        g = (gas(s) + dp) * A_P + B * sd + f_back - f_fwd
         return [v_t, (g - f_c) / M_T, v_p, f_c / M_P]
 
     return rhs
 
 
-def run(dead_time, method="RK45"):
-    """One run: (t_detect, final state, rhs evaluations, x_p0, accepted steps per segment)."""
-    s0 = -brentq(lambda d: K_E * d**1.5 - gas(-d) * A_P, 0.0, 1e-2, xtol=1e-16, rtol=1e-15)
-    y = np.array([-s0, V_MAX, -s0 + GAP, 0.0])
-    nfev = 0
-    steps = []
+def preload_stroke(k_e=K_E):
+    """s0 < 0: the static preload equilibrium on the forward stop, k_e (-s0)^1.5 = p1(s0) A_p."""
+    return -brentq(lambda d: k_e * d**1.5 - gas(-d) * A_P, 0.0, 1e-2, xtol=1e-16, rtol=1e-15)
 
-    # Segment 1: cruising until the sensor switches (terminal event).
-    def sensor(t, y):
-        return (V_MAX * t - y[0]) - S_SENSOR
 
-    sensor.terminal = True
-    sensor.direction = 1
-    cruise = lambda t: (V_MAX * t, V_MAX)
-    sol = solve_ivp(make_rhs(cruise), (0.0, T_END), y, method=method, rtol=RTOL, atol=ATOL, events=sensor)
-    nfev += sol.nfev
-    steps.append(len(sol.t) - 1)
-    t_detect = sol.t[-1]
-    y = sol.y[:, -1]
+def cruise(t):
+    return (V_MAX * t, V_MAX)
+
+
+def sensor_value(t, x_t):
+    """The sensor's event function, s - s_sensor, while the robot cruises."""
+    return (V_MAX * t - x_t) - S_SENSOR
+
+
+def after_detection(t_detect, dead_time):
+    """The robot's profile after the sensor switched: [(t_a, t_b, robot)] for cruising until the
+    brake, braking until the stop, standing until t_end (empty segments dropped)."""
     t_brake = t_detect + dead_time
     t_stop = t_brake + V_MAX / A_BRAKE
     x_b = V_MAX * t_brake
     x_s = x_b + V_MAX**2 / (2 * A_BRAKE)
     braking = lambda t: (x_b + V_MAX * (t - t_brake) - 0.5 * A_BRAKE * (t - t_brake) ** 2, V_MAX - A_BRAKE * (t - t_brake))
     stopped = lambda t: (x_s, 0.0)
-    # Segments 2-4: cruising until the brake, braking until the stop, standing until t_end.
+    out = []
     for (a, b, robot) in [(t_detect, t_brake, cruise), (t_brake, t_stop, braking), (t_stop, T_END, stopped)]:
         a, b = min(a, T_END), min(b, T_END)
-        if b <= a:
-            continue
+        if b > a:
+            out.append((a, b, robot))
+    return out
+
+
+def run(dead_time, method="RK45"):
+    """One run: (t_detect, final state, rhs evaluations, x_p0, accepted steps per segment)."""
+    s0 = preload_stroke()
+    y = np.array([-s0, V_MAX, -s0 + GAP, 0.0])
+    nfev = 0
+    steps = []
+
+    # Segment 1: cruising until the sensor switches (terminal event).
+    def sensor(t, y):
+        return sensor_value(t, y[0])
+
+    sensor.terminal = True
+    sensor.direction = 1
+    sol = solve_ivp(make_rhs(cruise), (0.0, T_END), y, method=method, rtol=RTOL, atol=ATOL, events=sensor)
+    nfev += sol.nfev
+    steps.append(len(sol.t) - 1)
+    t_detect = sol.t[-1]
+    y = sol.y[:, -1]
+    # Segments 2-4: cruising until the brake, braking until the stop, standing until t_end.
+    for (a, b, robot) in after_detection(t_detect, dead_time):
         sol = solve_ivp(make_rhs(robot), (a, b), y, method=method, rtol=RTOL, atol=ATOL)
         nfev += sol.nfev
         steps.append(len(sol.t) - 1)
