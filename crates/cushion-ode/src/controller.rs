@@ -49,6 +49,22 @@ impl PiController {
         }
     }
 
+    /// Hairer's DOP853 (the code's defaults): `beta = 0`, safety 0.9, `fac1 = 0.333` and
+    /// `fac2 = 6` (so `h_new / h` within `[0.333, 6]`), exponent `expo1 = 1/8 - 0.2 beta`
+    /// (DOPRI5's is `1/5 - 0.75 beta`).
+    pub fn dop853() -> Self {
+        let beta = 0.0;
+        PiController {
+            safety: 0.9,
+            beta,
+            min_ratio: 0.333,
+            max_ratio: 6.0,
+            expo: 1.0 / 8.0 - 0.2 * beta,
+            ln_facold: LN_1E_4,
+            last_rejected: false,
+        }
+    }
+
     /// Forget the history (after an event changed the state).
     pub fn reset(&mut self) {
         self.ln_facold = LN_1E_4;
@@ -312,6 +328,27 @@ mod tests {
         assert_eq!(h2, h, "no growth right after a rejection");
         assert_eq!(c.after_failure(1.0, StepFailure::SingularMatrix), 0.5);
         assert!((c.after_failure(1.0, StepFailure::NonFinite) - 0.2).abs() < 1e-15);
+    }
+
+    #[test]
+    fn dop853_controller_matches_the_codes_formula() {
+        // fac = err^(1/8) / 0.9 within [1/6, 1/0.333]; no growth after a rejection
+        let mut c = PiController::dop853();
+        for (err, h) in [(0.5f64, 1e-2), (1e-3, 2e-2), (1e-12, 1.0), (0.99, 0.1)] {
+            let (ok, got) = c.next(err, h);
+            assert!(ok);
+            let want = h / (err.powf(0.125) / 0.9).clamp(1.0 / 6.0, 1.0 / 0.333);
+            assert!((got - want).abs() <= 1e-14 * want, "{got} vs {want}");
+        }
+        let (ok, h) = c.next(1e9, 1.0);
+        assert!(!ok);
+        assert!((h - 0.333).abs() < 1e-12, "shrinks by at most 1/0.333: {h}");
+        let (ok, h2) = c.next(1e-12, h);
+        assert!(ok);
+        assert_eq!(h2, h);
+        let (ok, h3) = c.next(10.0, 1.0);
+        assert!(!ok);
+        assert!((h3 - 0.9 / 10f64.powf(0.125)).abs() < 1e-14);
     }
 
     #[test]

@@ -181,6 +181,7 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
             y1,
             f1: Some(f1),
             err: Some(err),
+            err_low: None,
         })
     }
 

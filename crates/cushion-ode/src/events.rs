@@ -6,6 +6,16 @@
 //! [`OdeSystem::event_chord_bounds`]) is not sampled inside. Location is a bracketing root
 //! finder (Illinois regula falsi, safeguarded by bisection) on the dense output ([`locate`]).
 //! Dispatch calls the system's handlers in time order, and at one instant in index order.
+//!
+//! A function exactly zero where a step starts has no side, and a crossing needs a start
+//! strictly on one side ([`Direction::crosses`]). Where a handler has just acted (and at the
+//! start of a run), such a function is given the side it takes a moment later: it is evaluated
+//! at `t + delta` along the solution, `delta = 100 eps (|t| + span)` (`span` the run's length),
+//! as SUNDIALS' CVODE does after a root, where it checks `g` at `t + 100 uround (|t| + |h|)`.
+//! A contact that begins at penetration zero is then in contact, not at its edge, and one that
+//! ends and touches again at once is found; a function still zero there (at rest on its
+//! threshold) fires only once it has left zero. Guarded by
+//! `tests/events.rs::a_function_zero_where_a_handler_left_it_takes_the_side_it_moves_to`.
 
 use crate::dense::DenseOutput;
 use crate::options::SolverOptions;
@@ -97,10 +107,13 @@ pub struct EventScan<const N: usize> {
     scan_fractions: Vec<f64>,
     /// Every event handled, in time order.
     pub log: Vec<EventRecord<N>>,
+    /// `100 eps span`: with `100 eps |t|`, how far past a point a zero function is looked at.
+    look_past: f64,
 }
 
 impl<const N: usize> EventScan<N> {
-    pub fn new(n_events: usize, opts: &SolverOptions) -> Self {
+    /// For `n_events` functions over a run of length `span` (s).
+    pub fn new(n_events: usize, opts: &SolverOptions, span: f64) -> Self {
         let segments = opts.event_subdivisions.saturating_add(1);
         let scan_fractions = if n_events == 0 {
             Vec::new()
@@ -115,6 +128,28 @@ impl<const N: usize> EventScan<N> {
             segments,
             scan_fractions,
             log: Vec::with_capacity(64),
+            look_past: 100.0 * f64::EPSILON * span.abs(),
+        }
+    }
+
+    /// Give each function of `g` that is exactly zero at `t` the value it takes at
+    /// `t + delta` (see the module's doc), the state there from `state_at`.
+    fn side_of_zeros<S: OdeSystem<N>>(
+        &self,
+        sys: &S,
+        t: f64,
+        g: &mut [f64; MAX_EVENTS],
+        state_at: impl Fn(f64) -> State<N>,
+    ) {
+        if !g[..self.n].contains(&0.0) {
+            return;
+        }
+        let t_past = t + 100.0 * f64::EPSILON * t.abs() + self.look_past;
+        let y_past = state_at(t_past);
+        for (i, gi) in g[..self.n].iter_mut().enumerate() {
+            if *gi == 0.0 {
+                *gi = sys.event(i, t_past, &y_past);
+            }
         }
     }
 
@@ -124,11 +159,13 @@ impl<const N: usize> EventScan<N> {
         }
     }
 
-    /// Evaluate the event functions at `(t, y)`: the start of the run, or after a handler
-    /// changed the state or the regime.
-    pub fn reset<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>) {
+    /// Evaluate the event functions at `(t, y)`, where `f = f(t, y)`: the start of the run,
+    /// or after a handler changed the state or the regime. A function exactly zero there
+    /// takes the side it moves to (along `y + (tau - t) f`).
+    pub fn reset<S: OdeSystem<N>>(&mut self, sys: &S, t: f64, y: &State<N>, f: &State<N>) {
         let mut g = [0.0; MAX_EVENTS];
         self.eval(sys, t, y, &mut g);
+        self.side_of_zeros(sys, t, &mut g, |tau| y + f * (tau - t));
         self.g = g;
     }
 
@@ -283,6 +320,7 @@ impl<const N: usize> EventScan<N> {
             lo_t = t_first;
             let mut g = [0.0; MAX_EVENTS];
             self.eval(&*sys, t_first, &y_state, &mut g);
+            self.side_of_zeros(&*sys, t_first, &mut g, |tau| dense.eval(tau));
             g_lo = g;
         }
         self.g = g_lo;

@@ -1,7 +1,8 @@
 //! `cushion-ode`: an adaptive Dormand–Prince 5(4) integrator with dense output, event
 //! detection and location, time stops and Hairer's stiffness test; an adaptive, L-stable
 //! Rosenbrock method (Hairer and Wanner's RODAS) for stiff problems; and fixed-step classical
-//! RK4 and explicit Euler; automatic switching between DOPRI5 and the Rosenbrock method
+//! RK4 and explicit Euler; Hairer's DOP853 of order 8 for tight tolerances ([`dop853`]);
+//! automatic switching between DOPRI5 and the Rosenbrock method
 //! ([`auto`]); all behind the same interface and the same loop.
 //!
 //! It knows ODEs and nothing else. The shape follows SciPy's `integrate/_ivp` and
@@ -26,6 +27,7 @@
 pub mod auto;
 pub mod controller;
 pub mod dense;
+pub mod dop853;
 pub mod dopri5;
 pub mod events;
 pub mod jacobian;

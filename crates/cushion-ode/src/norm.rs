@@ -43,6 +43,35 @@ impl<const N: usize> Weights<N> {
         (sum / N as f64).sqrt()
     }
 
+    /// Hairer's DOP853 norm of its two estimates, `err5` (order 5) and `err3` (order 3), both
+    /// `h` times the code's sums: with `E5`, `E3` the sums of squares of each scaled by
+    /// `atol + rtol * max(|y0|, |y1|)`, `E5 / sqrt(n (E5 + 0.01 E3))` (the code's
+    /// `|h| err sqrt(1 / (n deno))`, `deno = err + 0.01 err2`, whose sums lack the factor
+    /// `h^2`); 0 when both vanish (the code's `deno = 1`).
+    #[inline]
+    pub fn dop853_error_norm(
+        &self,
+        err5: &State<N>,
+        err3: &State<N>,
+        y0: &State<N>,
+        y1: &State<N>,
+    ) -> f64 {
+        let (mut e5, mut e3) = (0.0, 0.0);
+        for i in 0..N {
+            let sk = self.atol[i] + self.rtol[i] * y0[i].abs().max(y1[i].abs());
+            let q5 = err5[i] / sk;
+            let q3 = err3[i] / sk;
+            e5 += q5 * q5;
+            e3 += q3 * q3;
+        }
+        let deno = e5 + 0.01 * e3;
+        if deno > 0.0 {
+            e5 / (N as f64 * deno).sqrt()
+        } else {
+            0.0
+        }
+    }
+
     /// Sum of squares of `v / (atol + rtol * |y|)` (used by the initial step selection).
     #[inline]
     pub fn scaled_sq(&self, v: &State<N>, y: &State<N>) -> f64 {

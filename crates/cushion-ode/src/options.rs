@@ -8,6 +8,10 @@ use crate::State;
 pub enum Method {
     /// Adaptive Dormand–Prince 5(4) (Hairer's DOPRI5): FSAL, PI control, 4th-order dense output.
     Dp5,
+    /// Adaptive Dormand–Prince 8(5,3) (Hairer's DOP853): order 8, 12 stages, PI control with
+    /// the code's constants, 7th-order dense output (3 more stages per accepted step); for
+    /// tight tolerances.
+    Dop853,
     /// Adaptive Rosenbrock 4(3) (Hairer and Wanner's RODAS), L-stable, for stiff problems:
     /// Jacobian (the system's or by finite differences), predictive control, 3rd-order dense
     /// output.
@@ -22,10 +26,11 @@ pub enum Method {
 }
 
 impl Method {
-    /// The name users type (`dp5`, `rodas`, `auto`, `rk4`, `euler`).
+    /// The name users type (`dp5`, `dop853`, `rodas`, `auto`, `rk4`, `euler`).
     pub fn name(self) -> &'static str {
         match self {
             Method::Dp5 => "dp5",
+            Method::Dop853 => "dop853",
             Method::Rodas => "rodas",
             Method::Auto => "auto",
             Method::Rk4 => "rk4",
@@ -34,12 +39,13 @@ impl Method {
     }
 
     /// Every method's name, in the order users see them.
-    pub const NAMES: [&'static str; 5] = ["dp5", "rodas", "auto", "rk4", "euler"];
+    pub const NAMES: [&'static str; 6] = ["dp5", "dop853", "rodas", "auto", "rk4", "euler"];
 
     /// Parse a user's name; `None` if unknown.
     pub fn from_name(s: &str) -> Option<Method> {
         match s {
             "dp5" => Some(Method::Dp5),
+            "dop853" => Some(Method::Dop853),
             "rodas" => Some(Method::Rodas),
             "auto" => Some(Method::Auto),
             "rk4" => Some(Method::Rk4),
@@ -50,7 +56,10 @@ impl Method {
 
     /// Whether the step size adapts to an error estimate.
     pub fn is_adaptive(self) -> bool {
-        matches!(self, Method::Dp5 | Method::Rodas | Method::Auto)
+        matches!(
+            self,
+            Method::Dp5 | Method::Dop853 | Method::Rodas | Method::Auto
+        )
     }
 }
 
@@ -116,15 +125,17 @@ pub struct SolverOptions {
     /// Most steps (accepted and rejected) before giving up with `MaxSteps`.
     pub max_steps: u64,
     /// Safety factor of DOPRI5's PI step controller (Hairer: 0.9). The controller comes with
-    /// the method: `Rodas` has RODAS's own (`controller::PredictiveController::rodas`), and
-    /// these four settings are DOPRI5's.
+    /// the method: `Rodas` has RODAS's own (`controller::PredictiveController::rodas`),
+    /// `Dop853` DOP853's (`controller::PiController::dop853`), and these four settings are
+    /// DOPRI5's.
     pub safety: f64,
     /// PI controller's `beta` (Hairer: 0.04).
     pub beta: f64,
     /// Bounds of the step ratio `h_new / h` (Hairer: 0.2 and 10).
     pub min_ratio: f64,
     pub max_ratio: f64,
-    /// Hairer's stiffness test (DOPRI5 only: the other methods report no estimate).
+    /// Hairer's stiffness test (DOPRI5 and DOP853, each with 0.9 of its own stability
+    /// boundary as threshold: the other methods report no estimate).
     pub stiffness: StiffnessAction,
     /// Times where `f` is not smooth: stepped onto exactly, never across.
     pub time_stops: Vec<f64>,

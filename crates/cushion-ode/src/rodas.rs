@@ -195,6 +195,7 @@ impl<const N: usize> Stepper<N> for Rodas<N> {
             y1: y6 + k6,
             f1: None,
             err: Some(k6),
+            err_low: None,
         })
     }
 

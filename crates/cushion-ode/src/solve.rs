@@ -4,6 +4,7 @@
 use crate::auto::AutoSwitch;
 use crate::controller::{initial_step, Controller};
 use crate::dense::DenseOutput;
+use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::events::EventScan;
 use crate::norm::Weights;
@@ -29,6 +30,7 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     match opts.method {
         // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
         Method::Dp5 => integration.run(&mut Dopri5::<N>::new()),
+        Method::Dop853 => integration.run(&mut Dop853::<N>::new()),
         Method::Rodas => integration.run(&mut Rodas::<N>::new()),
         Method::Auto => integration.run(&mut AutoSwitch::<N>::new(opts)),
         Method::Rk4 => integration.run(&mut ExplicitRk::<N>::new(&CLASSICAL_RK4)),
@@ -42,6 +44,7 @@ fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
     a.y1.iter().all(|v| v.is_finite())
         && a.f1.is_none_or(|f| f.iter().all(|v| v.is_finite()))
         && a.err.is_none_or(|e| e.iter().all(|v| v.is_finite()))
+        && a.err_low.is_none_or(|e| e.iter().all(|v| v.is_finite()))
 }
 
 struct Integration<'a, S, const N: usize> {
@@ -85,7 +88,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             weights: Weights::of(opts),
             stops,
             n_events,
-            events: EventScan::new(n_events, opts),
+            events: EventScan::new(n_events, opts, t_end - t0),
             ts: Vec::new(),
             ys: Vec::new(),
             next_output: 0,
@@ -175,7 +178,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 format!("f(t0, y0) is not finite at t = {t0}"),
             );
         }
-        self.events.reset(&*self.sys, t0, &y0);
+        self.events.reset(&*self.sys, t0, &y0, &self.f);
         if self.t_end == t0 {
             return (Status::Success, String::new());
         }
@@ -183,7 +186,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         let adaptive = stepper.is_adaptive();
         let h_max = self.opts.h_max.min(self.t_end - t0);
         let mut controller = stepper.controller(self.opts);
-        let mut stiffness = StiffnessDetector::default();
+        let mut stiffness = StiffnessDetector::with_threshold(stepper.stiffness_threshold());
         let mut h = if !adaptive {
             self.opts.fixed_step
         } else {
@@ -228,7 +231,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             let counted = Counted::new(&*self.sys);
             let outcome = stepper.step(&counted, t, &y, &f0, h);
             self.stats.rhs_evals += counted.evals();
-            let attempt = match outcome {
+            let mut attempt = match outcome {
                 Ok(a) if is_finite(&a) => a,
                 failed => {
                     let failure = match failed {
@@ -255,7 +258,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             };
             let mut h_new = h;
             if let Some(err) = &attempt.err {
-                let en = self.weights.error_norm(err, &y, &attempt.y1);
+                let en = match &attempt.err_low {
+                    None => self.weights.error_norm(err, &y, &attempt.y1),
+                    Some(err3) => self.weights.dop853_error_norm(err, err3, &y, &attempt.y1),
+                };
                 let (accepted, hn) = controller.next(en, h);
                 if !accepted {
                     self.stats.rejected += 1;
@@ -266,7 +272,19 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 h_new = hn;
             }
             self.stats.steps += 1;
+            // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
+            let counted = Counted::new(&*self.sys);
+            let completed = stepper.complete(&counted, t, &y, h, &mut attempt);
+            self.stats.rhs_evals += counted.evals();
             stepper.accepted();
+            if completed && !is_finite(&attempt) {
+                self.t = t + h;
+                self.y = attempt.y1;
+                return (
+                    Status::NonFinite,
+                    format!("f is not finite at the accepted state at t = {}", t + h),
+                );
+            }
 
             // Stiffness test.
             if self.opts.stiffness != StiffnessAction::Off {
@@ -281,7 +299,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                             self.y = attempt.y1;
                             let msg = format!(
                                 "the problem is stiff since t = {since} (h*lambda > {:.3} for {} steps)",
-                                crate::stiffness::THRESHOLD,
+                                stiffness.threshold(),
                                 crate::stiffness::STIFF_STEPS
                             );
                             return (Status::Stiff, msg);
@@ -398,7 +416,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     /// anew there. Returns false if `f` is not finite.
     fn restart_at(&mut self, t: f64, y: &State<N>) -> bool {
         self.f = self.rhs(t, y);
-        self.events.reset(&*self.sys, t, y);
+        self.events.reset(&*self.sys, t, y, &self.f);
         self.f.iter().all(|v| v.is_finite())
     }
 

@@ -21,6 +21,10 @@ pub struct Attempt<const N: usize> {
     pub f1: Option<State<N>>,
     /// Local error estimate (unscaled), when the method has one.
     pub err: Option<State<N>>,
+    /// A second, lower-order estimate that the error norm combines with `err` as Hairer's
+    /// DOP853 does (`err5^2 / sqrt(err5^2 + 0.01 err3^2)`, [`crate::dop853`]); `None` for the
+    /// other methods, whose norm is that of `err` alone.
+    pub err_low: Option<State<N>>,
 }
 
 /// Why an attempt produced no step. The loop retries it smaller (an adaptive method) and
@@ -69,12 +73,34 @@ pub trait Stepper<const N: usize> {
         f0: &State<N>,
         h: f64,
     ) -> Result<Attempt<N>, StepFailure>;
+    /// The last attempt, from `(t, y)` with size `h`, was accepted: the evaluations a method
+    /// makes only for an accepted step, before its stiffness estimate and dense output are
+    /// asked for (DOP853: `f(y1)` into `a.f1`, and the three stages of its continuous
+    /// extension). Every evaluation goes through `sys` (counted). Returns whether it evaluated
+    /// anything (the loop then checks the new numbers are finite). Nothing by default.
+    #[inline]
+    fn complete<S: OdeSystem<N>>(
+        &mut self,
+        _sys: &S,
+        _t: f64,
+        _y: &State<N>,
+        _h: f64,
+        _a: &mut Attempt<N>,
+    ) -> bool {
+        false
+    }
     /// Dense output of the last attempt on `[t, t + h]` (valid once it is accepted).
     fn dense(&self, t: f64, h: f64, y0: &State<N>, f0: &State<N>, a: &Attempt<N>)
         -> DenseOutput<N>;
     /// Hairer's stiffness quotient `h * |lambda|` estimated from the last attempt, if the
     /// method has one.
     fn stiffness_estimate(&self, h: f64, a: &Attempt<N>) -> Option<f64>;
+    /// The threshold on [`Stepper::stiffness_estimate`] above which a step counts as held by
+    /// stability: 0.9 of the method's stability boundary (DOPRI5's by default).
+    #[inline]
+    fn stiffness_threshold(&self) -> f64 {
+        crate::stiffness::THRESHOLD
+    }
     /// The last attempt was accepted: the next starts from a new point.
     #[inline]
     fn accepted(&mut self) {}
@@ -226,6 +252,7 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
             y1,
             f1: Some(f1),
             err,
+            err_low: None,
         })
     }
 

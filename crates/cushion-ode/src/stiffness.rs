@@ -33,11 +33,20 @@ pub fn h_lambda<const N: usize>(
 }
 
 /// The test's running state.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct StiffnessDetector {
     stiff_in_a_row: u32,
     non_stiff: u32,
     run_started: Option<f64>,
+    /// The method's threshold ([`crate::stepper::Stepper::stiffness_threshold`]).
+    threshold: f64,
+}
+
+/// DOPRI5's threshold ([`THRESHOLD`]).
+impl Default for StiffnessDetector {
+    fn default() -> Self {
+        Self::with_threshold(THRESHOLD)
+    }
 }
 
 /// DOPRI5's stability boundary on the negative real axis: the `x` with `|R(-x)| = 1` for its
@@ -52,10 +61,26 @@ pub const STIFF_STEPS: u32 = 15;
 pub const RESET_STEPS: u32 = 6;
 
 impl StiffnessDetector {
+    /// For a method whose threshold on `h |lambda|` is `threshold` (0.9 of its stability
+    /// boundary).
+    pub fn with_threshold(threshold: f64) -> Self {
+        StiffnessDetector {
+            stiff_in_a_row: 0,
+            non_stiff: 0,
+            run_started: None,
+            threshold,
+        }
+    }
+
+    /// The threshold on `h |lambda|`.
+    pub fn threshold(&self) -> f64 {
+        self.threshold
+    }
+
     /// Feed one accepted step that started at `t` with estimate `h_lambda`. Returns
     /// `Some(start)` the step the test fires, with the time its stiff run began.
     pub fn observe(&mut self, t: f64, h_lambda: f64) -> Option<f64> {
-        if h_lambda > THRESHOLD {
+        if h_lambda > self.threshold {
             self.non_stiff = 0;
             if self.stiff_in_a_row == 0 {
                 self.run_started = Some(t);

@@ -455,3 +455,36 @@ fn a_time_stop_asked_for_inside_the_step_is_kept() {
     assert_eq!(reached.len(), 1, "{reached:?}");
     assert!((reached[0] - 0.35).abs() < 1e-15, "{reached:?}");
 }
+
+#[test]
+fn a_function_zero_where_a_handler_left_it_takes_the_side_it_moves_to() {
+    use cushion_ode::test_models::bouncing_ball::BouncingBall;
+    // A ball on the floor (x = 0, the event function exactly zero) thrown up at 1e-3 m/s
+    // lands at 2 v / g = 2.04e-4 s; the step sizes are free to span the whole flight (the
+    // fall is a quadratic, integrated exactly, so the first step is as long as h0 allows).
+    // The function is zero where the run starts and where each bounce's handler leaves it;
+    // looked at a moment later it is positive, so every landing is a falling crossing.
+    let mut ball = BouncingBall {
+        gravity: 9.81,
+        restitution: 0.5,
+        stop_after: 3,
+        bounces: 0,
+    };
+    let opts = SolverOptions {
+        h0: Some(1.0),
+        ..SolverOptions::default()
+    };
+    let sol = solve(&mut ball, 0.0, State::<2>::new(0.0, 1e-3), 1.0, &opts);
+    assert_eq!(sol.status, Status::StoppedByEvent, "{}", sol.message);
+    let flight = |v: f64| 2.0 * v / 9.81;
+    let exact = [
+        flight(1e-3),
+        flight(1e-3) + flight(5e-4),
+        flight(1e-3) + flight(5e-4) + flight(2.5e-4),
+    ];
+    let times: Vec<f64> = sol.events.iter().map(|e| e.t).collect();
+    assert_eq!(times.len(), 3, "{times:?}");
+    for (t, e) in times.iter().zip(exact) {
+        assert!((t - e).abs() < 1e-12, "{times:?} vs {exact:?}");
+    }
+}
