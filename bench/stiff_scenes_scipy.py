@@ -84,6 +84,27 @@ def hc_partials(k, chi, d, dd):
     return 1.5 * r * (k + chi * dd), chi * d * r
 
 
+# ------------------------------------------------- the paper's scene itself (4 states; no CLI)
+
+class Paper:
+    """The unmodified paper scene (`paper-hydraulic-dt*.toml`): for bench/work_precision.py."""
+    name = "paper"
+    n = 4
+    i_vp = 3
+    k_e = K_E
+
+    def __init__(self):
+        self.s0 = preload_stroke(self.k_e)
+        self.y0 = np.array([-self.s0, V_MAX, -self.s0 + GAP, 0.0])
+
+    def rhs(self, robot):
+        return make_rhs(robot, k_e=self.k_e)
+
+    def force_robot(self, t, y, robot):
+        x_r, v_r = robot(t)
+        return -tool_force(x_r - y[0], v_r - y[1], self.k_e)
+
+
 # ---------------------------------------------------------------- steel end-stops (4 states)
 
 class Steel:
@@ -194,9 +215,9 @@ SCENES = {"steel": Steel, "compressible": Compressible}
 
 # ------------------------------------------------------------------------------ one run
 
-def solve(scene, method, rtol, analytic, budget):
+def solve(scene, method, rtol, analytic, budget, dead_time=DEAD_TIME, atol=None):
     """One run to t_end. Returns (pieces, stats): pieces [(OdeSolution, robot, t_steps)]."""
-    atol = rtol / 1000.0
+    atol = rtol / 1000.0 if atol is None else atol
     deadline = time.perf_counter() + budget
     calls = [0]
     stats = dict(nfev=0, njev=0, nlu=0, steps=0, status="ok", t_reached=0.0, t_detect=None)
@@ -238,7 +259,7 @@ def solve(scene, method, rtol, analytic, budget):
                 break
             if a == 0.0 and sol.status == 1:
                 stats["t_detect"] = sol.t[-1]
-                segments = after_detection(sol.t[-1], DEAD_TIME)
+                segments = after_detection(sol.t[-1], dead_time)
     except OutOfTime:
         stats["status"] = "did not finish"
     stats["f_calls"] = calls[0]

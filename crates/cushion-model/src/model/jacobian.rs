@@ -87,6 +87,8 @@ impl Neg for D {
     }
 }
 
+// The product and quotient rules: clippy's suspicion of `+` in `Mul` does not apply.
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl Mul for D {
     type Output = D;
     fn mul(self, o: D) -> D {
@@ -107,6 +109,7 @@ impl Mul<f64> for D {
     }
 }
 
+#[allow(clippy::suspicious_arithmetic_impl)]
 impl Div for D {
     type Output = D;
     fn div(self, o: D) -> D {
