@@ -1,0 +1,787 @@
+#!/usr/bin/env python3
+"""Work-precision study: error against work (wall time, right-hand-side evaluations) for the
+engine's methods and for peers, on the paper's scenes, two stiff variants and a smooth problem.
+
+    # once: the virtual environment, the extension built into it, the peers
+    bash bench/setup_venv.sh                       # or: python3 -m venv .venv && .venv/bin/pip install numpy scipy
+    .venv/bin/pip install "maturin>=1.5,<2" pandas matplotlib pyarrow numba cyrk
+    .venv/bin/maturin develop --release            # builds crates/cushion-py into .venv (minutes)
+    # the study (about 4 min on 2 cores, 1 min of it compiling CyRK; --quick: a smoke run of under a minute)
+    .venv/bin/python bench/work_precision.py [--quick] [--scenes NAME...] [--no-charts]
+
+Needs numpy, scipy, pandas, matplotlib and the `cushion` package; `numba` and `CyRK` for the
+compiled peer (skipped with a note if missing; NumbaLSODA does not build here: it needs a
+Fortran compiler). Writes docs/work_precision.csv (one row per scene, method, setting and error
+measure), docs/work_precision.json (machine, commit, date, versions, the references and their
+agreement, the interpolated table) and docs/figures/work-precision-{time,evals}.svg.
+
+Scenes: the five paper scenes (sweeps/scenes/paper-*.toml); `steel-stops` (paper-hydraulic-dt70
+with stops.stiffness = 1e11); `compressible` (paper-hydraulic-dt70 with hydraulic.bulk_modulus =
+1.5e9; explicit methods are not run there: "failed (explicit)"); `oscillator`, a damped linear
+oscillator x'' + 2 zeta w x' + w^2 x = 0 with a closed form (peers only: the engine runs only its
+own scenes).
+
+Error measures: object_final_velocity (m/s), peak_robot_force (N), t_detect (s), absolute, against a
+reference computed two ways and printed side by side: the hydraulic scenes, the steel stops: the
+engine's dp5 at rtol 1e-13 / atol 1e-16 and SciPy's DOP853 (solve_ivp) at the same tolerances on
+the Python model of bench/scene_scipy.py / stiff_scenes_scipy.py; the compressible scene: the
+engine's rodas at 1e-12 / 1e-15 and SciPy's Radau (exact Jacobian) at 1e-12 / 1e-15; the bistable
+and rigid scenes (engine only): the engine's dp5 at 1e-13 and rodas at 1e-11. Each run is measured
+against the reference of its own model (the engine's runs against the engine's, the Python
+model's against SciPy's), and an error is marked `resolved` only if it exceeds ten times the
+references' disagreement (the charts drop unresolved points and draw that floor).
+
+Work: wall time per run, the median of repeats (the engine: in-process
+`cushion.simulate(..., trajectory=False)` calls, nothing subtracted; SciPy: the whole solve of
+all segments, dense output on for solve_ivp, peaks not included); right-hand-side evaluations
+(`stats["rhs_evals"]`; the peers: every call of the right-hand side, finite-difference Jacobians
+and event location included).
+
+Peers (the Python model: 4 states, contacts switched inside the right-hand side, the robot's
+kinks as segment boundaries, the sensor found by root-finding): SciPy solve_ivp RK45, DOP853,
+Radau, LSODA (finite-difference Jacobians, as a user gets them); Hairer's Fortran DOPRI5 and
+DOP853 through scipy.integrate.ode (the sensor: `solout` stops at the first step past it, then
+Brent's method on re-integrations from the step before); CyRK's C++ DOP853 and RK45 with a
+numba-compiled right-hand side (`nbsolve2_ivp`; the cruise in 0.5 ms chunks, each restarted with
+the last step size (at most half a chunk: CyRK's limit), until a step passes the sensor, then as for Hairer's). Hairer's and CyRK's
+runs report the final speed and t_detect only (no dense output to find the peak force from).
+"""
+
+import argparse
+import datetime
+import json
+import math
+import os
+import platform
+import subprocess
+import sys
+import time
+import warnings
+
+import numpy as np
+from scipy.integrate import ode, solve_ivp
+from scipy.optimize import brentq
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import scene_scipy as ss  # noqa: E402
+import stiff_scenes_scipy as sts  # noqa: E402
+
+import cushion  # noqa: E402
+
+MEASURES = ("object_final_velocity", "peak_robot_force", "t_detect")
+DT70 = "sweeps/scenes/paper-hydraulic-dt70.toml"
+SCENES = {
+    # name: (scene file, overrides, python model (class, dead time) or None, stiff)
+    "paper-hydraulic-dt70": (DT70, {}, (sts.Paper, 0.070), False),
+    "paper-hydraulic-dt10": ("sweeps/scenes/paper-hydraulic-dt10.toml", {}, (sts.Paper, 0.010), False),
+    "paper-bistable-dt70": ("sweeps/scenes/paper-bistable-dt70.toml", {}, None, False),
+    "paper-bistable-dt10": ("sweeps/scenes/paper-bistable-dt10.toml", {}, None, False),
+    "paper-rigid": ("sweeps/scenes/paper-rigid.toml", {}, None, False),
+    "steel-stops": (DT70, {"stops.stiffness": 1e11}, (sts.Steel, 0.070), False),
+    "compressible": (DT70, {"hydraulic.bulk_modulus": 1.5e9}, (sts.Compressible, 0.070), True),
+    "oscillator": None,
+}
+EXPLICIT_OURS = ("dp5", "dop853", "rk4", "euler")
+EXPLICIT_PEERS = ("RK45", "DOP853", "hairer-dopri5", "hairer-dop853", "cyrk-DOP853", "cyrk-RK45")
+
+# the damped linear oscillator: x'' + 2 zeta w x' + w^2 x = 0, x(0) = 1, x'(0) = 0, to T
+OSC_W, OSC_ZETA, OSC_T = 2 * math.pi * 10.0, 0.05, 1.0
+
+
+def osc_exact(t):
+    wd = OSC_W * math.sqrt(1 - OSC_ZETA**2)
+    e = math.exp(-OSC_ZETA * OSC_W * t)
+    return (e * (math.cos(wd * t) + OSC_ZETA * OSC_W / wd * math.sin(wd * t)),
+            -e * OSC_W**2 / wd * math.sin(wd * t))
+
+
+def osc_rhs(t, y):
+    return [y[1], -2 * OSC_ZETA * OSC_W * y[1] - OSC_W**2 * y[0]]
+
+
+def log(*a):
+    print(*a, flush=True)
+
+
+def sci(x):
+    return f"{x:.0e}".replace("e-0", "e-").replace("e+0", "e+")
+
+
+# ------------------------------------------------------------------------------ the engine
+
+def engine_once(name, method, rtol=None, atol=None, h=None):
+    path, over, _, _ = SCENES[name]
+    st = dict(over)
+    kw = dict(method=method, trajectory=False)
+    if h is not None:
+        st["solver.fixed_step"] = h
+    else:
+        kw.update(rtol=rtol, atol=atol)
+    path = os.path.join(ROOT, path)
+    return lambda: cushion.simulate(path, set=st, **kw)
+
+
+def timed(fn, first_seconds, target, lo, hi):
+    n = int(min(hi, max(lo, target / max(first_seconds, 1e-9))))
+    ts = []
+    for _ in range(n):
+        t0 = time.perf_counter()
+        fn()
+        ts.append(time.perf_counter() - t0)
+    return float(np.median(ts)), n
+
+
+def engine_point(name, method, setting, args):
+    """One engine setting: dict(status, values, seconds, rhs_evals, repeats)."""
+    fn = engine_once(name, method, **setting)
+    try:
+        t0 = time.perf_counter()
+        run = fn()
+        first = time.perf_counter() - t0
+    except cushion.ConfigError as e:
+        return dict(status=f"failed: {e}".splitlines()[0][:120])
+    s = run.summary
+    if s["status"] != "ok":
+        return dict(status=f"failed: {s['status']}", rhs_evals=s["stats"]["rhs_evals"], seconds=first)
+    secs, n = timed(fn, first, args.engine_target, args.engine_min, args.engine_max)
+    return dict(status="ok", values={m: s[m] for m in MEASURES}, seconds=secs,
+                rhs_evals=s["stats"]["rhs_evals"], repeats=n)
+
+
+def engine_has_dop853():
+    try:
+        cushion.simulate(os.path.join(ROOT, DT70), method="dop853", trajectory=False)
+        return True
+    except cushion.ConfigError:
+        return False
+
+
+# ----------------------------------------------------------------- SciPy solve_ivp (Python model)
+
+def scipy_ivp_once(name, method, rtol, atol, budget, analytic=False):
+    cls, dead_time = SCENES[name][2]
+    scene = cls()
+    t0 = time.perf_counter()
+    pieces, st = sts.solve(scene, method, rtol, analytic, budget, dead_time=dead_time, atol=atol)
+    secs = time.perf_counter() - t0
+    if st["status"] != "ok":
+        return dict(status="failed: " + st["status"], seconds=secs, rhs_evals=st["f_calls"])
+    vals = dict(sts.peaks(scene, pieces))
+    vals["object_final_velocity"] = st["y_end"][scene.i_vp]
+    vals["t_detect"] = st["t_detect"]
+    return dict(status="ok", values={m: vals[m] for m in MEASURES}, seconds=secs, rhs_evals=st["f_calls"])
+
+
+def osc_ivp_once(method, rtol, atol, budget):
+    calls = [0]
+
+    def f(t, y):
+        calls[0] += 1
+        return osc_rhs(t, y)
+
+    t0 = time.perf_counter()
+    sol = solve_ivp(f, (0.0, OSC_T), [1.0, 0.0], method=method, rtol=rtol, atol=atol)
+    secs = time.perf_counter() - t0
+    if sol.status != 0:
+        return dict(status="failed: " + sol.message, seconds=secs, rhs_evals=calls[0])
+    return dict(status="ok", values={"object_final_velocity": sol.y[1, -1]}, seconds=secs, rhs_evals=calls[0])
+
+
+# ------------------------------------------------ Hairer's DOPRI5 / DOP853 (scipy.integrate.ode)
+
+class Stop(Exception):
+    pass
+
+
+def counted(f, calls, deadline):
+    def g(t, y):
+        calls[0] += 1
+        if calls[0] & 1023 == 0 and time.perf_counter() > deadline:
+            raise Stop
+        return f(t, y)
+    return g
+
+
+def hairer_advance(f, integ, rtol, atol, t0, y0, t1, solout=None):
+    r = ode(f).set_integrator(integ, rtol=rtol, atol=atol, nsteps=10**8)
+    if solout is not None:
+        r.set_solout(solout)
+    r.set_initial_value(y0, t0)
+    y = r.integrate(t1)
+    if not r.successful():
+        raise RuntimeError(f"{integ} failed at t = {r.t}")
+    return r.t, np.array(y)
+
+
+def locate(advance, ta, ya, tb):
+    """t_detect in (ta, tb] and the state there, the state at t found by integrating from ta."""
+    def g(t):
+        if t == ta:
+            return ss.sensor_value(ta, ya[0])
+        return ss.sensor_value(t, advance(ta, ya, t)[0])
+    if g(tb) <= 0.0:  # the re-integration does not see the crossing: take the step's end
+        return tb, advance(ta, ya, tb)
+    td = brentq(g, ta, tb, xtol=1e-17, rtol=1e-15)
+    return td, advance(ta, ya, td)
+
+
+def robot_segments(t_detect, dead_time):
+    """[(a, b, mode, t_brake, x_b, x_s)]: cruise to the brake, braking, standing (clipped)."""
+    t_brake = t_detect + dead_time
+    t_stop = t_brake + ss.V_MAX / ss.A_BRAKE
+    x_b = ss.V_MAX * t_brake
+    x_s = x_b + ss.V_MAX**2 / (2 * ss.A_BRAKE)
+    out = []
+    for a, b, mode in ((t_detect, t_brake, 0), (t_brake, t_stop, 1), (t_stop, ss.T_END, 2)):
+        a, b = min(a, ss.T_END), min(b, ss.T_END)
+        if b > a:
+            out.append((a, b, mode, t_brake, x_b, x_s))
+    return out
+
+
+def hairer_once(name, integ, rtol, atol, budget):
+    calls = [0]
+    deadline = time.perf_counter() + budget
+    t0 = time.perf_counter()
+    try:
+        if name == "oscillator":
+            _, y = hairer_advance(counted(osc_rhs, calls, deadline), integ, rtol, atol, 0.0, [1.0, 0.0], OSC_T)
+            return dict(status="ok", values={"object_final_velocity": y[1]}, seconds=time.perf_counter() - t0,
+                        rhs_evals=calls[0])
+        cls, dead_time = SCENES[name][2]
+        scene = cls()
+        f = counted(scene.rhs(ss.cruise), calls, deadline)
+        last = {}
+
+        def solout(t, y):
+            if ss.sensor_value(t, y[0]) > 0.0:
+                return -1
+            last["t"], last["y"] = t, np.array(y)
+            return 0
+
+        tb, _ = hairer_advance(f, integ, rtol, atol, 0.0, scene.y0, ss.T_END, solout)
+        adv = lambda ta, ya, t: hairer_advance(f, integ, rtol, atol, ta, ya, t)[1]
+        td, y = locate(adv, last["t"], last["y"], tb)
+        for (a, b, robot) in ss.after_detection(td, dead_time):
+            _, y = hairer_advance(counted(scene.rhs(robot), calls, deadline), integ, rtol, atol, a, y, b)
+    except Stop:
+        return dict(status=f"failed: time limit {budget:g} s", seconds=time.perf_counter() - t0, rhs_evals=calls[0])
+    except RuntimeError as e:
+        return dict(status=f"failed: {e}", seconds=time.perf_counter() - t0, rhs_evals=calls[0])
+    return dict(status="ok", values={"object_final_velocity": y[scene.i_vp], "t_detect": td},
+                seconds=time.perf_counter() - t0, rhs_evals=calls[0])
+
+
+# ------------------------------------------------------- CyRK with a numba-compiled right-hand side
+
+CYRK = None  # filled by cyrk_setup(): dict(solve=..., addr={...}) or a reason string
+
+
+def cyrk_setup():
+    global CYRK
+    try:
+        import numba as nb
+        from numba import types
+        from numba.extending import intrinsic
+        from CyRK import cyjit, nbsolve2_ivp
+        import CyRK
+    except Exception as e:  # noqa: BLE001
+        CYRK = f"not installed ({type(e).__name__}: {e})"
+        return
+
+    @intrinsic
+    def counter_at(typingctx, addr):
+        sig = types.CPointer(types.int64)(types.int64)
+
+        def codegen(context, builder, signature, args):
+            return builder.inttoptr(args[0], context.get_value_type(types.CPointer(types.int64)))
+        return sig, codegen
+
+    L, M_T, M_P, A_P, VG0, P10, KAPPA, B = ss.L, ss.M_T, ss.M_P, ss.A_P, ss.VG0, ss.P10, ss.KAPPA, ss.B
+    K_C, CHI_C, CHI_E, V_MAX, A_BRAKE = ss.K_C, ss.CHI_C, ss.CHI_E, ss.V_MAX, ss.A_BRAKE
+    DPK = 0.5 * ss.C0 * ss.RHO * (ss.A_P / ss.A_O) ** 2
+    W, Z = OSC_W, OSC_ZETA
+
+    @nb.njit(inline="always")
+    def hc(k, chi, d, dd):
+        if d <= 0.0:
+            return 0.0
+        f = d**1.5 * (k + chi * dd)
+        return f if f > 0.0 else 0.0
+
+    def scene_rhs(dy, t, y, args):
+        # args: mode (0 cruise, 1 braking, 2 standing), t_brake, x_b, x_s, k_e, counter address
+        cnt = counter_at(np.int64(args[5]))
+        cnt[0] += 1
+        mode = args[0]
+        if mode == 0.0:
+            x_r, v_r = V_MAX * t, V_MAX
+        elif mode == 1.0:
+            tau = t - args[1]
+            x_r, v_r = args[2] + V_MAX * tau - 0.5 * A_BRAKE * tau * tau, V_MAX - A_BRAKE * tau
+        else:
+            x_r, v_r = args[3], 0.0
+        k_e = args[4]
+        s, sd = x_r - y[0], v_r - y[1]
+        p1 = P10 * (VG0 / (VG0 - A_P * s)) ** KAPPA
+        g = (p1 + DPK * sd * abs(sd)) * A_P + B * sd + hc(k_e, CHI_E, s - L, sd) - hc(k_e, CHI_E, -s, -sd)
+        fc = hc(K_C, CHI_C, y[0] - y[2], y[1] - y[3])
+        dy[0] = y[1]
+        dy[1] = (g - fc) / M_T
+        dy[2] = y[3]
+        dy[3] = fc / M_P
+
+    def osc(dy, t, y, args):
+        cnt = counter_at(np.int64(args[5]))
+        cnt[0] += 1
+        dy[0] = y[1]
+        dy[1] = -2.0 * Z * W * y[1] - W * W * y[0]
+
+    addr = {"scene": cyjit(scene_rhs).address, "osc": cyjit(osc).address}
+
+    @nb.njit
+    def nj_solve(addr_, meth, t0, t1, y0, args, rtol, atol, h0):
+        h0 = min(h0, 0.5 * abs(t1 - t0))  # CyRK takes a first step of at most half the span
+        res = nbsolve2_ivp(addr_, (t0, t1), y0, method=meth, args=args, rtol=rtol, atol=atol, first_step=h0)
+        ok = res.success
+        t, y = res.t.copy(), res.y.copy()
+        res.free()
+        return ok, t, y
+
+    V_SENS = ss.S_SENSOR
+
+    @nb.njit
+    def nj_run(addr_, meth, y0, args, rtol, atol, dead_time, chunk, t_end):
+        """One run of the scene, all of it compiled: (ok, object final speed, t_detect)."""
+        t, y, h = 0.0, y0.copy(), 0.0
+        while True:  # the cruise in chunks until a step passes the sensor
+            ok, ts, ys = nj_solve(addr_, meth, t, min(t + chunk, t_end), y, args, rtol, atol, h)
+            if not ok:
+                return False, 0.0, 0.0
+            found = -1
+            for i in range(ts.size):
+                if V_MAX * ts[i] - ys[0, i] - V_SENS > 0.0:
+                    found = i
+                    break
+            if found > 0:
+                ta, ya, tb = ts[found - 1], ys[:, found - 1].copy(), ts[found]
+                break
+            t, y, h = ts[-1], ys[:, -1].copy(), ts[-1] - ts[-2]
+        h = tb - ta
+        # the sensor's time: Illinois regula falsi on g(t) = v t - x_t(t) - s_sensor, x_t(t) by
+        # integrating from the last step before it
+        a, fa = ta, V_MAX * ta - ya[0] - V_SENS
+        b = tb
+        ok, ts, ys = nj_solve(addr_, meth, ta, b, ya, args, rtol, atol, b - ta)
+        fb = V_MAX * b - ys[0, -1] - V_SENS
+        td, yd = b, ys[:, -1].copy()
+        side = 0
+        for _ in range(80):
+            if fb <= 0.0 or b - a <= 4e-16 * b:
+                break
+            c = (a * fb - b * fa) / (fb - fa)
+            if not (a < c < b):
+                c = 0.5 * (a + b)
+            ok, ts, ys = nj_solve(addr_, meth, ta, c, ya, args, rtol, atol, c - ta)
+            fc = V_MAX * c - ys[0, -1] - V_SENS
+            if fc > 0.0:
+                b, fb, td, yd = c, fc, c, ys[:, -1].copy()
+                if side == -1:
+                    fa *= 0.5
+                side = -1
+            else:
+                a, fa = c, fc
+                if side == 1:
+                    fb *= 0.5
+                side = 1
+                if fc == 0.0:
+                    td, yd = c, ys[:, -1].copy()
+                    break
+            if abs(fc) < 1e-17:
+                break
+        y = yd
+        t_brake = td + dead_time
+        t_stop = t_brake + V_MAX / A_BRAKE
+        x_b = V_MAX * t_brake
+        x_s = x_b + V_MAX * V_MAX / (2.0 * A_BRAKE)
+        bounds = (td, t_brake, t_stop, t_end)
+        for mode in range(3):
+            a, b = min(bounds[mode], t_end), min(bounds[mode + 1], t_end)
+            if b <= a:
+                continue
+            args[0], args[1], args[2], args[3] = float(mode), t_brake, x_b, x_s
+            ok, ts, ys = nj_solve(addr_, meth, a, b, y, args, rtol, atol, h if mode == 0 else 0.0)
+            if not ok:
+                return False, 0.0, td
+            y = ys[:, -1].copy()
+        return True, y[3], td
+
+    @nb.njit
+    def nj_osc(addr_, meth, y0, args, rtol, atol, t_end):
+        ok, ts, ys = nj_solve(addr_, meth, 0.0, t_end, y0, args, rtol, atol, 0.0)
+        return ok, ys[1, -1]
+
+    CYRK = dict(run=nj_run, osc=nj_osc, addr=addr, version=CyRK.__version__, numba=nb.__version__)
+    # compile now, outside any timing
+    for m in ("DOP853", "RK45"):
+        cyrk_once("oscillator", "cyrk-" + m, 1e-6, 1e-9, 60.0)
+        cyrk_once("paper-hydraulic-dt70", "cyrk-" + m, 1e-6, 1e-9, 60.0)
+
+
+CHUNK = 5e-4
+
+
+def cyrk_once(name, method, rtol, atol, budget):
+    """One CyRK run, driven from numba (no time limit inside: CyRK's runs here take milliseconds)."""
+    meth = method.split("-", 1)[1]
+    counter = np.zeros(1, np.int64)
+    args = np.array([0.0, 0.0, 0.0, 0.0, 0.0, float(counter.ctypes.data)])
+    t0 = time.perf_counter()
+    if name == "oscillator":
+        ok, v = CYRK["osc"](CYRK["addr"]["osc"], meth, np.array([1.0, 0.0]), args, rtol, atol, OSC_T)
+        td = None
+    else:
+        cls, dead_time = SCENES[name][2]
+        scene = cls()
+        args[4] = sts.K_STEEL if cls is sts.Steel else ss.K_E
+        ok, v, td = CYRK["run"](CYRK["addr"]["scene"], meth, scene.y0, args, rtol, atol, dead_time, CHUNK, ss.T_END)
+    secs = time.perf_counter() - t0
+    if not ok:
+        return dict(status="failed: CyRK did not succeed", seconds=secs, rhs_evals=int(counter[0]))
+    vals = {"object_final_velocity": v} if td is None else {"object_final_velocity": v, "t_detect": td}
+    return dict(status="ok", values=vals, seconds=secs, rhs_evals=int(counter[0]))
+
+
+def peer_point(name, method, rtol, args):
+    """One peer run, then repeats if it was quick: dict like engine_point's."""
+    atol = rtol / 1000.0
+    budget = args.budget
+    if method.startswith("hairer-"):
+        fn = lambda: hairer_once(name, method.split("-", 1)[1], rtol, atol, budget)
+    elif method.startswith("cyrk-"):
+        fn = lambda: cyrk_once(name, method, rtol, atol, budget)
+    elif name == "oscillator":
+        fn = lambda: osc_ivp_once(method, rtol, atol, budget)
+    else:
+        fn = lambda: scipy_ivp_once(name, method, rtol, atol, budget)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            r = fn()
+        except Exception as e:  # noqa: BLE001  (e.g. a NaN state handed to the next segment)
+            return dict(status=f"failed: {type(e).__name__}: {e}"[:120])
+        if r["status"] == "ok" and not all(math.isfinite(v) for v in r["values"].values()):
+            r["status"] = "failed: non-finite result"
+        if r["status"] != "ok":
+            return r
+        n = 1 if r["seconds"] > args.peer_slow else args.peer_repeats
+        secs = [r["seconds"]] + [fn()["seconds"] for _ in range(n - 1)]
+    r["seconds"], r["repeats"] = float(np.median(secs)), len(secs)
+    return r
+
+
+# ------------------------------------------------------------------------------ references
+
+def references(names, args):
+    """{scene: dict(A=(label, values), B=(label, values), engine=values, peers=values, floor={m: 10|A-B|})}"""
+    out = {}
+    for name in names:
+        t0 = time.perf_counter()
+        if name == "oscillator":
+            v = osc_exact(OSC_T)[1]
+            out[name] = dict(A=("closed form", {"object_final_velocity": v}), B=("closed form", {"object_final_velocity": v}),
+                             engine=None, peers={"object_final_velocity": v}, floor={"object_final_velocity": 1e-15})
+            continue
+        model = SCENES[name][2]
+        if name == "compressible":
+            a = engine_once(name, "rodas", rtol=1e-12, atol=1e-15)()
+            la = "cushion rodas rtol 1e-12 atol 1e-15"
+        else:
+            a = engine_once(name, "dp5", rtol=1e-13, atol=1e-16)()
+            la = "cushion dp5 rtol 1e-13 atol 1e-16"
+        assert a.summary["status"] == "ok", (name, a.summary["status"])
+        va = {m: a.summary[m] for m in MEASURES}
+        if model is None:
+            b = engine_once(name, "rodas", rtol=1e-11, atol=1e-14)()
+            assert b.summary["status"] == "ok", (name, b.summary["status"])
+            vb = {m: b.summary[m] for m in MEASURES}
+            lb = "cushion rodas rtol 1e-11 atol 1e-14"
+            eng, peers = va, None
+        else:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                if name == "compressible":
+                    cls, dt = model
+                    scene = cls()
+                    pieces, st = sts.solve(scene, "Radau", 1e-12, True, args.ref_budget, dead_time=dt, atol=1e-15)
+                    lb = "SciPy Radau (exact Jacobian) rtol 1e-12 atol 1e-15"
+                    assert st["status"] == "ok", st["status"]
+                    vb = dict(sts.peaks(scene, pieces))
+                    vb["object_final_velocity"] = st["y_end"][scene.i_vp]
+                    vb["t_detect"] = st["t_detect"]
+                    vb = {m: vb[m] for m in MEASURES}
+                else:
+                    r = scipy_ivp_once(name, "DOP853", 1e-13, 1e-16, args.ref_budget)
+                    assert r["status"] == "ok", r["status"]
+                    vb, lb = r["values"], "SciPy DOP853 (solve_ivp) rtol 1e-13 atol 1e-16"
+            eng, peers = va, vb
+        floor = {m: max(10 * abs(va[m] - vb[m]), 1e-15 * abs(va[m])) for m in MEASURES}
+        out[name] = dict(A=(la, va), B=(lb, vb), engine=eng, peers=peers, floor=floor)
+        log(f"reference {name} ({time.perf_counter() - t0:.1f} s)")
+    return out
+
+
+# ------------------------------------------------------------------------------ the study
+
+def study(names, args, has_dop853):
+    rows = []
+    refs = references(names, args)
+    log("\nreferences, two ways (A, B), and |A - B|:")
+    for name in names:
+        r = refs[name]
+        for m in r["A"][1]:
+            a, b = r["A"][1][m], r["B"][1][m]
+            log(f"  {name:22s} {m:22s} A {a:+.15g}  B {b:+.15g}  |A-B| {abs(a - b):.2e}  "
+                f"(A: {r['A'][0]}; B: {r['B'][0]})")
+
+    q = args.quick
+    dp5_rtols = [1e-3, 1e-5, 1e-7, 1e-9] if q else [10.0**-k for k in range(3, 13)]
+    imp_rtols = [1e-3, 1e-5, 1e-7] if q else [10.0**-k for k in range(3, 11)]
+    peer_rtols = [1e-3, 1e-5, 1e-7] if q else [10.0**-k for k in range(3, 11)]
+    rk4_steps = [1e-4, 1e-5] if q else [1e-4, 3e-5, 1e-5, 3e-6, 1e-6]
+    euler_steps = [1e-5, 1e-6] if q else [1e-5, 1e-6, 1e-7]
+    ours = [("dp5", dp5_rtols, None), ("rodas", imp_rtols, None), ("auto", imp_rtols, None),
+            ("rk4", None, rk4_steps), ("euler", None, euler_steps)]
+    if has_dop853:
+        ours.insert(1, ("dop853", dp5_rtols, None))
+    peers = ["RK45", "DOP853", "Radau", "LSODA", "hairer-dopri5", "hairer-dop853"]
+    if isinstance(CYRK, dict):
+        peers += ["cyrk-DOP853", "cyrk-RK45"]
+
+    def add(name, method, family, setting, res, ref, floor):
+        for m in MEASURES:
+            if name == "oscillator" and m != "object_final_velocity":
+                continue
+            v = res.get("values", {}).get(m) if res["status"] == "ok" else None
+            err = abs(v - ref[m]) if v is not None else float("nan")
+            rows.append(dict(scene=name, method=method, family=family, setting=setting, error_measure=m,
+                             status=res["status"], value=v if v is not None else float("nan"), error=err,
+                             resolved=bool(v is not None and err > floor[m]), floor=floor[m],
+                             seconds=res.get("seconds", float("nan")), rhs_evals=res.get("rhs_evals", -1),
+                             repeats=res.get("repeats", 0)))
+
+    for name in names:
+        ref, t_scene = refs[name], time.perf_counter()
+        stiff = name == "compressible"
+        if name != "oscillator":
+            for method, rtols, steps in ours:
+                settings = ([(f"rtol={sci(r)}", dict(rtol=r, atol=r / 1000)) for r in rtols] if rtols
+                            else [(f"h={sci(h)}", dict(h=h)) for h in steps])
+                for label, st in settings:
+                    if stiff and method in EXPLICIT_OURS:
+                        res = dict(status="failed (explicit, not run)")
+                    else:
+                        res = engine_point(name, method, st, args)
+                    add(name, method, "cushion", label, res, ref["engine"], ref["floor"])
+        if name == "oscillator" or SCENES[name][2] is not None:
+            for method in peers:
+                dead = None
+                for r in peer_rtols:
+                    label = f"rtol={sci(r)}"
+                    if stiff and method in EXPLICIT_PEERS:
+                        res = dict(status="failed (explicit, not run)")
+                    elif dead:
+                        res = dict(status=f"failed (not run: {dead} at a looser rtol)")
+                    else:
+                        res = peer_point(name, method, r, args)
+                        if "time limit" in res["status"]:  # tighter settings would take longer still
+                            dead = res["status"]
+                    add(name, method, "peer", label, res, ref["peers"], ref["floor"])
+                log(f"  {name} {method}: done")
+        log(f"{name}: {time.perf_counter() - t_scene:.1f} s")
+    return rows, refs
+
+
+# ------------------------------------------------------------------------------ charts, table
+
+STYLE = {  # ours strong and thick, peers muted and thin
+    "dp5": dict(color="#1f4e9c", lw=2.6, marker="o", ms=4.5),
+    "dop853": dict(color="#c0171d", lw=2.6, marker="D", ms=4.5),
+    "rodas": dict(color="#1a7f37", lw=2.6, marker="s", ms=4.5),
+    "auto": dict(color="#e07b00", lw=2.0, marker="^", ms=4.5, ls="--"),
+    "rk4": dict(color="#7b2c9e", lw=2.0, marker="v", ms=4.5),
+    "euler": dict(color="#6b3d1f", lw=2.0, marker="x", ms=5),
+    "RK45": dict(color="#8c8c8c", lw=1.1, marker=".", ms=4),
+    "DOP853": dict(color="#b0b0b0", lw=1.1, marker=".", ms=4, ls="--"),
+    "Radau": dict(color="#9ab8d8", lw=1.1, marker=".", ms=4),
+    "LSODA": dict(color="#e8b88a", lw=1.1, marker=".", ms=4),
+    "hairer-dopri5": dict(color="#a0a0a0", lw=1.1, marker="+", ms=5, ls=":"),
+    "hairer-dop853": dict(color="#c4c4c4", lw=1.1, marker="+", ms=5, ls="-."),
+    "cyrk-DOP853": dict(color="#a8d5a0", lw=1.1, marker=".", ms=4),
+    "cyrk-RK45": dict(color="#d3b5e0", lw=1.1, marker=".", ms=4, ls="--"),
+}
+LABEL = {
+    "dp5": "cushion dp5", "dop853": "cushion dop853", "rodas": "cushion rodas", "auto": "cushion auto",
+    "rk4": "cushion rk4 (fixed h)", "euler": "cushion euler (fixed h)",
+    "RK45": "SciPy RK45", "DOP853": "SciPy DOP853", "Radau": "SciPy Radau", "LSODA": "SciPy LSODA",
+    "hairer-dopri5": "Hairer DOPRI5 (scipy ode)", "hairer-dop853": "Hairer DOP853 (scipy ode)",
+    "cyrk-DOP853": "CyRK DOP853 + numba", "cyrk-RK45": "CyRK RK45 + numba",
+}
+
+
+def charts(df, names, outdir, measure="object_final_velocity"):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    d = df[(df.error_measure == measure) & (df.status == "ok")]
+    ncol = 4
+    nrow = math.ceil(len(names) / ncol)
+    for work, xlabel, fname in (("seconds", "wall time per run (s)", "work-precision-time.svg"),
+                                ("rhs_evals", "right-hand-side evaluations per run", "work-precision-evals.svg")):
+        fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.6 * nrow + 1.2), squeeze=False)
+        handles = {}
+        for ax, name in zip(axes.flat, names):
+            s = d[d.scene == name]
+            floor = s.floor.max() if len(s) else None
+            for method in STYLE:
+                mm = s[(s.method == method) & s.resolved]
+                if mm.empty:
+                    continue
+                st = dict(STYLE[method])
+                z = 3 if method in LABEL and not method[0].isupper() and "-" not in method else 2
+                (h,) = ax.plot(mm[work], mm.error, label=LABEL[method], zorder=z, **st)
+                handles[method] = h
+            if floor and name != "oscillator":
+                ax.axhline(floor, color="#d0d0d0", lw=0.8, ls="-", zorder=1)
+                ax.text(0.02, floor, " reference floor", transform=ax.get_yaxis_transform(), fontsize=6.5,
+                        color="#909090", va="bottom")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            title = name + (" (peers only)" if name == "oscillator" else "")
+            ax.set_title(title, fontsize=10)
+            ax.grid(True, which="major", color="#eeeeee", lw=0.6)
+            ax.tick_params(labelsize=8)
+            ax.set_xlabel(xlabel, fontsize=8)
+            ax.set_ylabel(("|final speed - reference| (m/s)" if name != "oscillator"
+                           else "|x'(T) - exact| (m/s)"), fontsize=8)
+        for ax in list(axes.flat)[len(names):]:
+            ax.set_visible(False)
+        order = [m for m in STYLE if m in handles]
+        fig.legend([handles[m] for m in order], [LABEL[m] for m in order], loc="lower center",
+                   ncol=min(7, len(order)), fontsize=8, frameon=False)
+        fig.suptitle("Work-precision: error in the object's final speed against "
+                     + ("wall time" if work == "seconds" else "right-hand-side evaluations")
+                     + " (log-log; cushion strong, peers muted)", fontsize=11)
+        fig.tight_layout(rect=(0, 0.07 if nrow > 1 else 0.12, 1, 0.96))
+        path = os.path.join(outdir, fname)
+        fig.savefig(path)
+        plt.close(fig)
+        log(f"wrote {os.path.relpath(path, ROOT)}")
+
+
+def interpolate(df, scene, targets, measure="object_final_velocity"):
+    """{method: {target: (seconds, evals)}} by log-log interpolation between settings."""
+    out = {}
+    d = df[(df.scene == scene) & (df.error_measure == measure) & (df.status == "ok") & df.resolved]
+    for method, g in d.groupby("method", sort=False):
+        g = g.sort_values("rhs_evals")
+        e, s, n = np.log10(g.error.values), np.log10(g.seconds.values), np.log10(g.rhs_evals.values.astype(float))
+        res = {}
+        for tgt in targets:
+            lt = math.log10(tgt)
+            val = None
+            for i in range(len(e) - 1):
+                if (e[i] - lt) * (e[i + 1] - lt) <= 0 and e[i] != e[i + 1]:
+                    w = (lt - e[i]) / (e[i + 1] - e[i])
+                    val = (10 ** (s[i] + w * (s[i + 1] - s[i])), 10 ** (n[i] + w * (n[i + 1] - n[i])))
+                    break
+            res[tgt] = val
+        out[method] = res
+    return out
+
+
+def machine_info():
+    info = {"date": datetime.datetime.now().astimezone().isoformat(timespec="seconds")}
+    try:
+        for line in subprocess.run(["lscpu"], capture_output=True, text=True).stdout.splitlines():
+            k, _, v = line.partition(":")
+            if k.strip() in ("Model name", "CPU(s)", "Thread(s) per core", "Core(s) per socket"):
+                info[k.strip()] = v.strip()
+    except OSError:
+        pass
+    info["cores"] = os.cpu_count()
+    info["load_average_at_start"] = os.getloadavg()
+    git = lambda *a: subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
+    info["git_commit"] = git("rev-parse", "HEAD")
+    info["git_dirty_files"] = [l[3:] for l in git("status", "--porcelain").splitlines()]
+    import scipy
+    info["versions"] = dict(python=platform.python_version(), numpy=np.__version__, scipy=scipy.__version__,
+                            cushion=cushion.__version__)
+    if isinstance(CYRK, dict):
+        info["versions"].update(CyRK=CYRK["version"], numba=CYRK["numba"])
+    return info
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="a smoke run: few settings, one repeat")
+    ap.add_argument("--scenes", nargs="+", default=list(SCENES), choices=list(SCENES))
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs"), help="folder of the CSV and JSON (figures/ inside)")
+    ap.add_argument("--budget", type=float, default=None, help="s per peer run before it counts as failed (30; quick 5)")
+    ap.add_argument("--no-charts", action="store_true")
+    args = ap.parse_args()
+    args.budget = args.budget or (5.0 if args.quick else 30.0)
+    args.ref_budget = 300.0
+    args.engine_target, args.engine_min, args.engine_max = (0.05, 1, 3) if args.quick else (0.3, 5, 41)
+    args.peer_repeats, args.peer_slow = (1, 0.0) if args.quick else (3, 1.0)
+
+    import pandas as pd
+    t_start = time.perf_counter()
+    info = machine_info()
+    has_dop853 = engine_has_dop853()
+    log(f"cushion {cushion.__version__}, method dop853 {'available' if has_dop853 else 'not available (ConfigError)'}")
+    cyrk_setup()
+    log("CyRK: " + (f"{CYRK['version']} with numba {CYRK['numba']}" if isinstance(CYRK, dict) else CYRK))
+    rows, refs = study(args.scenes, args, has_dop853)
+    df = pd.DataFrame(rows)
+    os.makedirs(os.path.join(args.out, "figures"), exist_ok=True)
+    csv = os.path.join(args.out, "work_precision.csv")
+    with open(csv, "w") as f:
+        f.write(f"# bench/work_precision.py{' --quick' if args.quick else ''}: commit {info['git_commit'][:12]}, "
+                f"{info['date']}, {info.get('Model name', '?')}, {info['cores']} cores; see work_precision.json\n")
+        df.to_csv(f, index=False, float_format="%.10g")
+    log(f"wrote {os.path.relpath(csv, ROOT)} ({len(df)} rows)")
+
+    table = {}
+    for name in args.scenes:
+        table[name] = {m: {f"{t:g}": v for t, v in r.items()} for m, r in interpolate(df, name, (1e-6, 1e-9)).items()}
+    if "paper-hydraulic-dt70" in table:
+        log("\npaper-hydraulic-dt70, object final speed: time and evaluations at an error of 1e-6 and 1e-9 "
+            "(log-log interpolated)")
+        for m, r in table["paper-hydraulic-dt70"].items():
+            cells = ["-" if v is None else f"{v[0] * 1e6:10.0f} us {v[1]:9.0f} evals" for v in r.values()]
+            log(f"  {m:15s} {cells[0]:>30s} | {cells[1]:>30s}")
+    info.update(
+        command=" ".join(["bench/work_precision.py"] + sys.argv[1:]),
+        engine_has_dop853=has_dop853,
+        cyrk=CYRK if isinstance(CYRK, str) else "CyRK nbsolve2_ivp with a numba cfunc right-hand side",
+        numbalsoda="not used: does not build here (needs a Fortran compiler)",
+        references={n: dict(A=r["A"][0], B=r["B"][0], values_A=r["A"][1], values_B=r["B"][1],
+                            disagreement={m: abs(r["A"][1][m] - r["B"][1][m]) for m in r["A"][1]},
+                            floor=r["floor"]) for n, r in refs.items()},
+        at_error=table,
+        wall_seconds=round(time.perf_counter() - t_start, 1),
+        load_average_at_end=os.getloadavg(),
+    )
+    with open(os.path.join(args.out, "work_precision.json"), "w") as f:
+        json.dump(info, f, indent=1, default=float)
+    if not args.no_charts:
+        charts(df, args.scenes, os.path.join(args.out, "figures"))
+    log(f"total {time.perf_counter() - t_start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()
