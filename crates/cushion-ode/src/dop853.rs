@@ -46,15 +46,7 @@ fn stage_input<const N: usize, const M: usize>(
     h: f64,
     terms: [(f64, &State<N>); M],
 ) -> State<N> {
-    let mut out = *y;
-    for n in 0..N {
-        let mut acc = terms[0].1[n] * terms[0].0;
-        for term in &terms[1..] {
-            acc += term.1[n] * term.0;
-        }
-        out[n] += h * acc;
-    }
-    out
+    y + weighted(terms) * h
 }
 
 /// `a_1 k_1 + a_2 k_2 + ...`.
