@@ -3,24 +3,11 @@
 //! compressible liquid), and the steel stops and contacts users will try. The references are
 //! DOPRI5 runs at tight tolerances.
 
-use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-fn paper(name: &str, sets: &[(&str, &str)]) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../sweeps/scenes")
-        .join(format!("{name}.toml"));
-    let mut s = Scene::from_file(&p).unwrap();
-    for (k, v) in sets {
-        s.set_from_str(k, v).unwrap();
-    }
-    s
-}
+mod common;
 
-fn run(s: &Scene) -> Summary {
-    let r = simulate(s, &RunOptions::default()).summary;
-    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
-    r
-}
+use common::{paper, run_ok as run};
 
 /// The largest difference of the results a user reads, each over its own scale: speeds over
 /// the approach speed, forces over the peak force, the stroke over the stroke's scale.

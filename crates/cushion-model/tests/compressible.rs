@@ -4,22 +4,14 @@
 //! orifice's laminar range (below its critical Reynolds number) changes the impact by less
 //! than the tolerance.
 
-use cushion_model::{simulate, simulate_with_ledger, RunOptions, RunStatus, Scene, Summary};
+use cushion_model::{simulate_with_ledger, RunOptions, RunStatus, Scene};
+
+mod common;
+
+use common::run_ok as run;
 
 fn paper_with(sets: &[(&str, &str)]) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../sweeps/scenes/paper-hydraulic-dt70.toml");
-    let mut s = Scene::from_file(&p).unwrap();
-    for (k, v) in sets {
-        s.set_from_str(k, v).unwrap();
-    }
-    s
-}
-
-fn run(s: &Scene) -> Summary {
-    let r = simulate(s, &RunOptions::default()).summary;
-    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
-    r
+    common::paper("paper-hydraulic-dt70", sets)
 }
 
 fn rel(a: f64, b: f64) -> f64 {
