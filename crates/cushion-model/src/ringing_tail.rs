@@ -197,7 +197,13 @@ impl Model {
                 step *= 0.5;
             }
             s_eq += step;
-            if step.abs() <= 1e-11 * depth {
+            // converged to 1e-11 of the depth, or to what the tool's position can resolve
+            // (the stroke is x_r - x_t: a stiff stop's depth, 5e-8 m for steel at 1e11
+            // N/m^1.5, is resolved only to a few ulp of x_r; without this the search never
+            // converges there, and every check of the tail pays 40 Newton steps again:
+            // `tests::the_equilibrium_on_a_steel_stop_is_found`)
+            let resolution = 4.0 * f64::EPSILON * seg.at(t).0.abs();
+            if step.abs() <= (1e-11 * depth).max(resolution) {
                 converged = true;
                 break;
             }
@@ -525,5 +531,34 @@ impl Model {
             w += m * pc.a_r * (x1 - x0) - m * (sd1 * v1 - sd0 * v0) + m * pc.a_r * (u1 - u0);
         }
         w
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::config::Scene;
+    use crate::model::Model;
+
+    /// The tool resting on its forward stop at the preload, with the robot cruising: the
+    /// equilibrium on the stop is found for a paper-like stop and for a steel one, whose depth
+    /// (5e-8 m at 1e11 N/m^1.5) only a few ulp of the flange's position resolve.
+    #[test]
+    fn the_equilibrium_on_a_steel_stop_is_found() {
+        for stiffness in ["6e5", "1e11", "1e12"] {
+            let mut scene = Scene::default();
+            scene.set_from_str("stops.stiffness", stiffness).unwrap();
+            let mut m = Model::new(&scene);
+            let y = m.y0.clone();
+            let t = 0.05;
+            let seg = *m.robot.current();
+            let (x_r, _, a_r) = seg.at(t);
+            // the tool where the preload left it, relative to the flange
+            let i = m.layout.tool.unwrap();
+            let s0 = -y[i];
+            let mut z = y.clone();
+            z[i] = x_r - s0;
+            let l = m.linearisation(t, &z, &seg, a_r, s0);
+            assert!(l.is_some(), "stops.stiffness = {stiffness}: no equilibrium");
+        }
     }
 }
