@@ -1,7 +1,7 @@
 //! Classic problems: Arenstorf orbit, bouncing ball, stiffness test.
 
 use cushion_ode::test_models::arenstorf::{initial_state, Arenstorf, PERIOD};
-use cushion_ode::test_models::bouncing_ball::BouncingBall;
+use cushion_ode::test_models::bouncing_ball::ten_bounces;
 use cushion_ode::test_models::robertson::Robertson;
 use cushion_ode::test_models::van_der_pol::VanDerPol;
 use cushion_ode::{solve, Method, SolverOptions, State, Status, StiffnessAction, Tolerance};
@@ -34,19 +34,12 @@ fn arenstorf_orbit_closes_after_one_period() {
 #[test]
 fn bouncing_ball_first_ten_bounces_match_closed_form() {
     for method in [Method::Dp5, Method::Rk4] {
-        let mut ball = BouncingBall {
-            gravity: 9.81,
-            restitution: 0.8,
-            stop_after: 10,
-            bounces: 0,
-        };
-        let exact = ball.bounce_times(1.0, 10);
         let opts = SolverOptions {
             method,
             fixed_step: 0.01,
             ..tol_opts(1e-10)
         };
-        let sol = solve(&mut ball, 0.0, State::<2>::new(1.0, 0.0), 100.0, &opts);
+        let (sol, exact) = ten_bounces(&opts);
         assert_eq!(sol.status, Status::StoppedByEvent, "{method:?}");
         assert_eq!(sol.events.len(), 10, "{method:?}");
         for (ev, t) in sol.events.iter().zip(&exact) {

@@ -3,7 +3,7 @@
 //! evaluations.
 
 use cushion_ode::test_models::arenstorf::{initial_state, Arenstorf, PERIOD};
-use cushion_ode::test_models::bouncing_ball::BouncingBall;
+use cushion_ode::test_models::bouncing_ball::ten_bounces;
 use cushion_ode::test_models::exponential::Oscillator;
 use cushion_ode::test_models::manufactured::Manufactured;
 use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
@@ -218,20 +218,7 @@ fn arenstorf_closes_with_fewer_evaluations_than_dopri5() {
 #[test]
 fn bouncing_ball_bounce_times_match_the_closed_form() {
     // The fall is quadratic in t: the method and its continuous extension are exact on it.
-    let mut ball = BouncingBall {
-        gravity: 9.81,
-        restitution: 0.8,
-        stop_after: 10,
-        bounces: 0,
-    };
-    let exact = ball.bounce_times(1.0, 10);
-    let sol = solve(
-        &mut ball,
-        0.0,
-        State::<2>::new(1.0, 0.0),
-        100.0,
-        &opts(Method::Dop853, 1e-10),
-    );
+    let (sol, exact) = ten_bounces(&opts(Method::Dop853, 1e-10));
     assert_eq!(sol.status, Status::StoppedByEvent);
     assert_eq!(sol.events.len(), 10);
     for (ev, t) in sol.events.iter().zip(&exact) {

@@ -1,7 +1,7 @@
 //! Events, time stops and output under Rodas4 (`Method::Rodas`): the same loop as DOPRI5, so
 //! crossings inside implicit steps are located on the dense output as precisely.
 
-use cushion_ode::test_models::bouncing_ball::BouncingBall;
+use cushion_ode::test_models::bouncing_ball::ten_bounces;
 use cushion_ode::test_models::exponential::Oscillator;
 use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
 use cushion_ode::{solve, Method, OdeSystem, Output, SolverOptions, State, Status, Tolerance};
@@ -21,20 +21,7 @@ fn bouncing_ball_bounce_times_match_the_closed_form() {
     // (f is linear in y, constant in t). With an exact Jacobian a Rosenbrock method of order 4
     // integrates the quadratic fall exactly, and its continuous extension of order 3 is exact
     // on it too, so the root finder sees the true height.
-    let mut ball = BouncingBall {
-        gravity: 9.81,
-        restitution: 0.8,
-        stop_after: 10,
-        bounces: 0,
-    };
-    let exact = ball.bounce_times(1.0, 10);
-    let sol = solve(
-        &mut ball,
-        0.0,
-        State::<2>::new(1.0, 0.0),
-        100.0,
-        &rodas(1e-10),
-    );
+    let (sol, exact) = ten_bounces(&rodas(1e-10));
     assert_eq!(sol.status, Status::StoppedByEvent);
     assert_eq!(sol.events.len(), 10);
     for (ev, t) in sol.events.iter().zip(&exact) {

@@ -1,7 +1,7 @@
 //! A ball falling under gravity onto the floor `x = 0`, bouncing with restitution `e`.
 //! Event: `x` falls through 0; action: `v <- -e v`, restart.
 
-use crate::{Control, Direction, EventAction, OdeSystem, State};
+use crate::{solve, Control, Direction, EventAction, OdeSystem, Solution, SolverOptions, State};
 
 pub struct BouncingBall {
     pub gravity: f64,
@@ -9,6 +9,20 @@ pub struct BouncingBall {
     /// Stop after this many bounces (0: never).
     pub stop_after: usize,
     pub bounces: usize,
+}
+
+/// The drop every method is checked on: from rest at 1 m, `g = 9.81`, restitution 0.8, stopped
+/// at the tenth bounce; the solution under `opts` and the ten bounce times in closed form.
+pub fn ten_bounces(opts: &SolverOptions) -> (Solution<2>, Vec<f64>) {
+    let mut ball = BouncingBall {
+        gravity: 9.81,
+        restitution: 0.8,
+        stop_after: 10,
+        bounces: 0,
+    };
+    let exact = ball.bounce_times(1.0, 10);
+    let sol = solve(&mut ball, 0.0, State::<2>::new(1.0, 0.0), 100.0, opts);
+    (sol, exact)
 }
 
 impl BouncingBall {
