@@ -95,8 +95,11 @@
 //! read (its labels are garbled).
 //!
 //! Modules: [`config`] (scene keys, defaults, validation), [`physics`] (force laws, robot
-//! profile, preload equilibrium), [`model`] (the ODE system, events, metrics), [`simulate`](mod@simulate)
-//! (one run), [`summary`](mod@summary), [`trajectory`].
+//! profile, preload equilibrium), [`model`] (the physics as an ODE system: right-hand side,
+//! events and their handlers, Jacobian), `observe` (what watches a run: the peaks, the early
+//! end, the trajectory recorder), `tail` (a run's end in closed form after its early end),
+//! `ledger` (the energy ledger), [`simulate`](mod@simulate) (one run: the model and its
+//! observers composed), [`summary`](mod@summary), [`trajectory`].
 
 // A negated comparison (`!(x > 0.0)`) is how a value is checked here when NaN must fail the
 // check too: clippy would have it written otherwise.
@@ -104,15 +107,17 @@
 
 pub mod config;
 mod gas_law;
+mod ledger;
 pub mod model;
+mod observe;
 mod peaks;
 pub mod physics;
-mod recorder;
 mod resting;
 mod ringing;
 mod ringing_tail;
 pub mod simulate;
 pub mod summary;
+mod tail;
 pub mod trajectory;
 
 pub use config::{ConfigError, KeyInfo, Module, Scene};

@@ -23,30 +23,21 @@
 //! stops. The position and speed events tell the integrator how far they can stray inside a
 //! step (`event_chord_bound`), so quiet steps are not sampled inside.
 //!
-//! Peaks (`|F_r|`, `F_c`, stroke `s`) are sampled at every step's end, and at three interior
-//! points of its dense output where a new peak is possible (`observe_step`); the step holding
-//! the largest sample keeps five nodes of its dense output (a degree-4 polynomial, so they
-//! reproduce it exactly) and the peak inside it (or just after it, in the next step, when the
-//! largest sample is the step's end) is located once, at the end of the run, by Brent's search
-//! (`peaks.rs`).
+//! The model is the physics only. What observes a run (the peaks, the early end, the
+//! trajectory) lives apart, in `observe.rs`, and `simulate` composes it with the model.
 //!
 //! Here: the layout, the scene's numbers and the assembly (`Model::new`). The rest, one idea a
 //! file: `model/forces.rs` the physics at an instant, `model/events.rs` the event functions and
 //! what each does, `model/ode_system.rs` the model as the integrator sees it,
-//! `model/jacobian.rs` its derivatives for the implicit method,
-//! `model/observe.rs` the peaks' samples at each step, `model/early_end.rs` when nothing can
-//! change any more.
+//! `model/jacobian.rs` its derivatives for the implicit method.
 
-mod early_end;
 mod events;
 mod forces;
 mod jacobian;
-mod observe;
 mod ode_system;
 
 use crate::config::{Module, RobotStart, Scene};
 use crate::gas_law::GasLaw;
-use crate::peaks::{rival_window, PeakCandidate};
 use crate::physics::{self, RobotProfile, GRAVITY};
 use crate::trajectory::EventLogEntry;
 use cushion_ode::MAX_EVENTS;
@@ -177,20 +168,15 @@ pub(crate) struct Regime {
     pub stop_released: bool,
 }
 
-/// Peaks and counts gathered along the run.
-#[derive(Clone, Debug)]
+/// What the event handlers record besides the event log: the detection time (s) and the
+/// impacts.
+#[derive(Clone, Debug, Default)]
 pub(crate) struct Metrics {
     pub t_detect: Option<f64>,
-    pub peak_fr: f64,
-    pub t_peak_fr: f64,
-    pub peak_fc: f64,
-    pub max_stroke: f64,
     pub object_impacts: u32,
     pub fwd_impacts: u32,
     pub back_impacts: u32,
     pub back_hit: bool,
-    /// Largest sampled gas pressure (compressible model; the lumped one uses `p1(max_stroke)`).
-    pub max_p1: f64,
 }
 
 /// The ODE system of one scene.
@@ -212,40 +198,9 @@ pub struct Model {
     event_set: EventSet,
     pub(crate) metrics: Metrics,
     pub(crate) log: Vec<EventLogEntry>,
-    pub(crate) early_end: Option<f64>,
-    /// The tool's ringing in closed form after an early end (`ringing_tail.rs`).
-    pub(crate) ringing_tail: Option<crate::ringing_tail::RingingTail>,
-    pub(crate) ringing_tail_enabled: bool,
-    /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
-    pub(crate) ringing_max_amplitude: f64,
-    /// Error the closed form may leave in the robot impulse, N s: rtol times the momentum scale
-    /// `(m_t + m_p) v_max`.
-    pub(crate) ringing_impulse_tolerance: f64,
-    /// No ringing-tail check before this time.
-    pub(crate) next_ringing_check: f64,
-    /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
-    pub(crate) ringing_cache: Vec<(f64, bool, crate::ringing_tail::Linearisation)>,
-    fr_peak: PeakCandidate,
-    fc_peak: PeakCandidate,
-    s_peak: PeakCandidate,
-    /// `F_r, F_c, s, sd` at the end of the last step.
-    last_sample: Option<(f64, f64, f64, f64)>,
-    /// Steps still to sample in full (set by events and time stops).
-    force_sample: u8,
-    /// The next step begins where `F_r` jumps (a robot kink under a rigid or stuck tool, a stick
-    /// or slip of the tool): its start is sampled too, on its own side of the jump.
-    sample_start: bool,
-    /// The largest `|F_r|` of those samples, with its time (s) and sign (N).
-    fr_after_jump: Option<(f64, f64)>,
-    early_end_enabled: bool,
     pub(crate) t_end: f64,
-    settle_v: f64,
-    settle_a: f64,
-    /// The solver's tolerances (for the tool's rest while the robot cruises, `resting.rs`).
-    pub(crate) atol: f64,
-    pub(crate) rtol: f64,
-    /// The stroke the tool rests at after a settled early end while the robot cruises (m).
-    pub(crate) rest_stroke: Option<f64>,
+    /// The stroke of the static preload equilibrium the run starts in (m).
+    pub(crate) preload_stroke: f64,
     /// The initial state (the preload equilibrium), in the order of `layout`.
     pub y0: Vec<f64>,
 }
@@ -363,7 +318,6 @@ impl Model {
             events[n_events] = e;
             n_events += 1;
         });
-        let atol = scene.solver.atol;
         let gas_area = if layout.liquid.is_some() { 1.0 } else { p.a_p };
         let mut m = Model {
             gas: GasLaw::new(p.p10, p.v_g0, gas_area, p.kappa),
@@ -376,47 +330,10 @@ impl Model {
             events,
             n_events,
             event_set,
-            metrics: Metrics {
-                t_detect: None,
-                peak_fr: 0.0,
-                t_peak_fr: 0.0,
-                peak_fc: 0.0,
-                max_stroke: s0,
-                object_impacts: 0,
-                fwd_impacts: 0,
-                back_impacts: 0,
-                back_hit: false,
-                max_p1: f64::NEG_INFINITY,
-            },
+            metrics: Metrics::default(),
             log: Vec::new(),
-            early_end: None,
-            ringing_tail: None,
-            ringing_tail_enabled: scene.solver.early_end && scene.solver.ringing_tail,
-            ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
-            ringing_impulse_tolerance: scene.solver.rtol
-                * (scene.tool.mass
-                    + if scene.object.enabled {
-                        scene.object.mass
-                    } else {
-                        0.0
-                    })
-                * scene.robot.approach_speed,
-            next_ringing_check: 0.0,
-            ringing_cache: Vec::new(),
-            fr_peak: PeakCandidate::default(),
-            fc_peak: PeakCandidate::default(),
-            s_peak: PeakCandidate::default(),
-            last_sample: None,
-            force_sample: 0,
-            sample_start: false,
-            fr_after_jump: None,
-            early_end_enabled: scene.solver.early_end,
             t_end: scene.t_end,
-            settle_v: 100.0 * atol,
-            settle_a: 1000.0 * atol,
-            atol,
-            rtol: scene.solver.rtol,
-            rest_stroke: None,
+            preload_stroke: s0,
             y0: Vec::new(),
         };
         // Dry friction: the tool starts stuck if friction can hold it.
@@ -429,14 +346,6 @@ impl Model {
             }
         }
         m.step_regime = m.regime;
-        let e0 = m.eval(0.0, &y0, m.robot.current(), &m.regime);
-        m.metrics.peak_fr = e0.f_r;
-        m.metrics.peak_fc = e0.f_c;
-        let window = rival_window(m.rtol);
-        m.fr_peak = PeakCandidate::starting_at(e0.f_r.abs(), window);
-        m.fc_peak = PeakCandidate::starting_at(e0.f_c, window);
-        m.s_peak = PeakCandidate::starting_at(s0, window);
-        m.metrics.max_p1 = e0.p1;
         m.y0 = y0;
         m
     }
@@ -444,6 +353,12 @@ impl Model {
     /// The regime in force during the step being reported to observers (`on_step`).
     pub(crate) fn step_regime(&self) -> &Regime {
         &self.step_regime
+    }
+
+    /// The tool moves with the robot (rigid module, or stuck by dry friction): the force on it
+    /// jumps where the robot's acceleration does.
+    pub(crate) fn tool_moves_with_robot(&self) -> bool {
+        self.p.module == Module::Rigid || self.regime.tool_stuck
     }
 }
 

@@ -3,7 +3,7 @@
 //! run, by Brent's search.
 //!
 //! The physics is sampled at every step's end, and at three points inside where a new peak is
-//! possible (`model/observe.rs`, `observe_step`). (Where `F_r` jumps, at a step's start, that first
+//! possible (`observe/peak_sampler.rs`). (Where `F_r` jumps, at a step's start, that first
 //! value is kept apart, `fr_after_jump`: a value at a jump needs no search.) When the
 //! largest sample is a step's end, the peak may lie on either side of it: just before it in
 //! that step, or just after it in the next one. The next step is then kept as well and both

@@ -17,6 +17,7 @@
 //! riding with the robot: the extrapolation puts it there (`x_t = x_r - s_eq`, `v_t = v_r`).
 
 use crate::model::{Eval, Model};
+use crate::observe::early_end::EarlyEnd;
 use crate::physics::Segment;
 
 /// How much the tool's deviation from rest must decay before `t_end`.
@@ -25,30 +26,31 @@ const DECAY_BEFORE_END: f64 = 1000.0;
 /// Largest deviation from rest, as a multiple of the speed tolerance `atol + rtol |v_r|`.
 const REST_SPEED: f64 = 10.0;
 
-impl Model {
+impl EarlyEnd {
     /// The equilibrium stroke (m) of a tool that has come to rest on its stop, if it has (see
     /// the module docs); `e` is the physics at `(t, y)` on the robot segment `seg`. It must also
     /// stay short of the sensor, if that has not switched yet.
     pub(crate) fn rest_on_stop(
         &mut self,
+        m: &Model,
         t: f64,
         y: &[f64],
         seg: &Segment,
         e: &Eval,
     ) -> Option<f64> {
-        let r = &self.regime;
+        let r = &m.regime;
         let tol_v = self.atol + self.rtol * e.v_r.abs();
         // cheap tests first: one stop holds the tool, no friction or liquid state that could
         // move it on, and its speed is at the level of the tolerance
-        if self.layout.liquid.is_some()
+        if m.layout.liquid.is_some()
             || r.cavitating
             || r.fwd == r.back
-            || self.p.d > 0.0
+            || m.p.d > 0.0
             || !(e.sd.abs() <= REST_SPEED * tol_v)
         {
             return None;
         }
-        let lin = self.linearisation(t, y, seg, seg.a, e.s)?;
+        let lin = self.linearisation(m, t, y, seg, seg.a, e.s)?;
         let c = &lin.coef;
         if !(c.k1 > 0.0 && c.c > 0.0) {
             return None;
@@ -61,9 +63,9 @@ impl Model {
             w0 * (zeta - (zeta * zeta - 1.0).sqrt())
         };
         let speed = e.sd.hypot(w0 * (e.s - lin.s_eq));
-        let sensor_quiet = self.regime.detected || lin.s_eq + 2.0 * speed / w0 < self.p.s_sensor;
+        let sensor_quiet = m.regime.detected || lin.s_eq + 2.0 * speed / w0 < m.p.s_sensor;
         (speed <= REST_SPEED * tol_v
-            && rate * (self.t_end - t) >= DECAY_BEFORE_END.ln()
+            && rate * (m.t_end - t) >= DECAY_BEFORE_END.ln()
             && sensor_quiet)
             .then_some(lin.s_eq)
     }
@@ -72,6 +74,8 @@ impl Model {
 #[cfg(test)]
 mod tests {
     use crate::model::Model;
+    use crate::observe::early_end::EarlyEnd;
+    use crate::observe::peak_sampler::PeakSampler;
     use crate::Scene;
 
     /// The default scene at `t = 0`: the robot cruises at 1 m/s and its sensor has not switched,
@@ -81,13 +85,15 @@ mod tests {
     /// below. Returns whether the run may end there.
     fn may_end(dv_t: f64, dv_p: f64) -> bool {
         let scene = Scene::default();
-        let mut model = Model::new(&scene);
+        let model = Model::new(&scene);
+        let mut early_end = EarlyEnd::new(&scene);
+        let peaks = PeakSampler::new(&model, scene.solver.rtol).peaks;
         let mut y = model.y0.clone();
         let (i, j) = (model.layout.tool.unwrap(), model.layout.object.unwrap());
         let v_r = scene.robot.approach_speed;
         y[i + 1] = v_r - dv_t;
         y[j + 1] = v_r - dv_p;
-        model.can_end_early(0.0, &y)
+        early_end.check(&model, &peaks, 0.0, &y)
     }
 
     #[test]

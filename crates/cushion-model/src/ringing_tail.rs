@@ -25,6 +25,8 @@
 
 use crate::config::Module;
 use crate::model::{Model, MAX_STATES};
+use crate::observe::early_end::EarlyEnd;
+use crate::observe::peak_sampler::Peaks;
 use crate::physics::{self, Phase, Segment};
 use crate::ringing::{Coefficients, Ringing};
 
@@ -134,37 +136,6 @@ impl Model {
         }
     }
 
-    /// The equilibrium on the holding stop and the oscillator's coefficients there, for a robot
-    /// segment of acceleration `a_r`. They depend on `a_r` and on which stop holds the tool only
-    /// (the force law does not depend on time), so they are computed once and kept; `s` is
-    /// where Newton starts.
-    pub(crate) fn linearisation(
-        &mut self,
-        t: f64,
-        y: &[f64],
-        seg: &Segment,
-        a_r: f64,
-        s: f64,
-    ) -> Option<Linearisation> {
-        if let Some(l) = self.cached_linearisation(a_r) {
-            return Some(l);
-        }
-        // a failure is not kept: Newton may succeed from a later stroke
-        let l = self.linearise(t, y, seg, a_r, s)?;
-        self.ringing_cache.push((a_r, self.regime.fwd, l));
-        Some(l)
-    }
-
-    /// The kept linearisation for a robot segment of acceleration `a_r` on the stop that holds
-    /// the tool now, if one was computed.
-    fn cached_linearisation(&self, a_r: f64) -> Option<Linearisation> {
-        let fwd = self.regime.fwd;
-        self.ringing_cache
-            .iter()
-            .find(|(a, f, _)| *a == a_r && *f == fwd)
-            .map(|(_, _, l)| *l)
-    }
-
     fn linearise(
         &self,
         t: f64,
@@ -241,6 +212,40 @@ impl Model {
         };
         Some(Linearisation { s_eq, depth, coef })
     }
+}
+
+impl EarlyEnd {
+    /// The equilibrium on the holding stop and the oscillator's coefficients there, for a robot
+    /// segment of acceleration `a_r`. They depend on `a_r` and on which stop holds the tool only
+    /// (the force law does not depend on time), so they are computed once and kept; `s` is
+    /// where Newton starts.
+    pub(crate) fn linearisation(
+        &mut self,
+        m: &Model,
+        t: f64,
+        y: &[f64],
+        seg: &Segment,
+        a_r: f64,
+        s: f64,
+    ) -> Option<Linearisation> {
+        if let Some(l) = self.cached_linearisation(m, a_r) {
+            return Some(l);
+        }
+        // a failure is not kept: Newton may succeed from a later stroke
+        let l = m.linearise(t, y, seg, a_r, s)?;
+        self.ringing_cache.push((a_r, m.regime.fwd, l));
+        Some(l)
+    }
+
+    /// The kept linearisation for a robot segment of acceleration `a_r` on the stop that holds
+    /// the tool now, if one was computed.
+    fn cached_linearisation(&self, m: &Model, a_r: f64) -> Option<Linearisation> {
+        let fwd = m.regime.fwd;
+        self.ringing_cache
+            .iter()
+            .find(|(a, f, _)| *a == a_r && *f == fwd)
+            .map(|(_, _, l)| *l)
+    }
 
     /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
     /// acceleration `a_r`. `Err(Some(wait))` if it rings too strongly for the closed form now,
@@ -248,8 +253,10 @@ impl Model {
     /// can have, `lambda + mu a` (linear and orifice damping; the orifice's share falls with the
     /// amplitude, so the real wait is longer); `Err(None)` if the tool has no equilibrium on
     /// its stop or the closed form does not describe it.
+    #[allow(clippy::too_many_arguments)]
     fn ringing_piece(
         &mut self,
+        m: &Model,
         t: f64,
         y: &[f64],
         seg: &Segment,
@@ -257,7 +264,7 @@ impl Model {
         s: f64,
         sd: f64,
     ) -> Result<Piece, Option<f64>> {
-        let lin = self.linearisation(t, y, seg, a_r, s).ok_or(None)?;
+        let lin = self.linearisation(m, t, y, seg, a_r, s).ok_or(None)?;
         let c = &lin.coef;
         let (u0, max) = (s - lin.s_eq, self.ringing_max_amplitude * lin.depth);
         if !(c.k1 > 0.0) {
@@ -291,18 +298,25 @@ impl Model {
         })
     }
 
-    /// Whether the rest of the run may be written as the tool's ringing from `(t, y)` (see the
-    /// module docs); stores the tail when it may.
-    pub(crate) fn try_ringing_tail(&mut self, t: f64, y: &[f64]) -> bool {
-        let p = &self.p;
-        let r = &self.regime;
-        let seg = *self.robot.current();
-        let cruising_to_brake = seg.phase == Phase::Cruising && self.pending_brake.is_some();
-        let quiet = self.ringing_tail_enabled
+    /// The tool's ringing from `(t, y)` to the end of the run, if the rest of the run may be
+    /// written as that (see the module docs); `peaks` are the run's so far, which the tail must
+    /// not change.
+    pub(crate) fn try_ringing_tail(
+        &mut self,
+        m: &Model,
+        peaks: &Peaks,
+        t: f64,
+        y: &[f64],
+    ) -> Option<RingingTail> {
+        let p = &m.p;
+        let r = &m.regime;
+        let seg = *m.robot.current();
+        let cruising_to_brake = seg.phase == Phase::Cruising && m.pending_brake.is_some();
+        let quiet = self.ringing_enabled
             && t >= self.next_ringing_check
             && matches!(p.module, Module::Hydraulic | Module::Bistable)
-            && self.layout.tool.is_some()
-            && self.layout.liquid.is_none()
+            && m.layout.tool.is_some()
+            && m.layout.liquid.is_none()
             && p.d == 0.0
             && !r.tool_stuck
             && !r.cavitating
@@ -311,27 +325,27 @@ impl Model {
             && !r.stop_released
             && (matches!(seg.phase, Phase::Braking | Phase::Stopped)
                 || cruising_to_brake
-                || (self.cruising_to_end() && self.object_outruns(y, seg.at(t).1)));
+                || (m.cruising_to_end() && m.object_outruns(y, seg.at(t).1)));
         if !quiet {
-            return false;
+            return None;
         }
         let (x_r, v_r, a_r) = seg.at(t);
-        let i = self.layout.tool.unwrap_or(0);
+        let i = m.layout.tool.unwrap_or(0);
         let (s, sd) = (x_r - y[i], v_r - y[i + 1]);
-        let first = match self.ringing_piece(t, y, &seg, a_r, s, sd) {
+        let first = match self.ringing_piece(m, t, y, &seg, a_r, s, sd) {
             Ok(piece) => piece,
             Err(wait) => {
                 // look again once the ringing may have decayed enough: when its amplitude can
                 // first be small enough, and at least a tenth of a period on
                 // (or right after the robot's next kink: a new equilibrium, a new amplitude)
-                let tenth = 0.1 * self.ringing_period_guess();
+                let tenth = 0.1 * self.ringing_period_guess(m);
                 let kink = match seg.phase {
-                    Phase::Braking => seg.t0 + seg.v0 / self.robot.a_brake,
-                    _ => self.pending_brake.unwrap_or(f64::INFINITY),
+                    Phase::Braking => seg.t0 + seg.v0 / m.robot.a_brake,
+                    _ => m.pending_brake.unwrap_or(f64::INFINITY),
                 };
                 let next = t + wait.map_or(tenth, |w| w.max(tenth));
                 self.next_ringing_check = next.min(kink.max(t + tenth));
-                return false;
+                return None;
             }
         };
         // the robot's segments still to come: braking at the pending brake time, standing at
@@ -343,25 +357,25 @@ impl Model {
         };
         let mut last = seg;
         if cruising_to_brake {
-            let tb = self.pending_brake.unwrap_or(f64::INFINITY);
-            if tb < self.t_end {
+            let tb = m.pending_brake.unwrap_or(f64::INFINITY);
+            if tb < m.t_end {
                 let (x, v, _) = seg.at(tb);
                 last = Segment {
                     t0: tb,
                     x0: x,
                     v0: v.max(0.0),
-                    a: -self.robot.a_brake,
+                    a: -m.robot.a_brake,
                     phase: Phase::Braking,
                 };
-                if !self.extend_tail(&mut tail, y, &last) {
-                    return false;
+                if !self.extend_tail(m, &mut tail, y, &last) {
+                    return None;
                 }
                 tail.brake = Some(tb);
             }
         }
         if last.phase == Phase::Braking {
-            let t_stop = last.t0 + last.v0 / self.robot.a_brake;
-            if t_stop < self.t_end {
+            let t_stop = last.t0 + last.v0 / m.robot.a_brake;
+            if t_stop < m.t_end {
                 let stopped = Segment {
                     t0: t_stop,
                     x0: last.at(t_stop).0,
@@ -369,28 +383,33 @@ impl Model {
                     a: 0.0,
                     phase: Phase::Stopped,
                 };
-                if !self.extend_tail(&mut tail, y, &stopped) {
-                    return false;
+                if !self.extend_tail(m, &mut tail, y, &stopped) {
+                    return None;
                 }
                 tail.stop = Some(t_stop);
                 last = stopped;
             }
         }
-        if !(tail.impulse_error(self.p.m_t, self.t_end) <= self.ringing_impulse_tolerance)
-            || !self.tail_changes_nothing(t, y, &seg, &last, &tail)
+        if !(tail.impulse_error(m.p.m_t, m.t_end) <= self.ringing_impulse_tolerance)
+            || !tail_changes_nothing(m, peaks, t, y, &seg, &last, &tail)
         {
-            self.next_ringing_check = t + self.ringing_period_guess();
-            return false;
+            self.next_ringing_check = t + self.ringing_period_guess(m);
+            return None;
         }
-        self.ringing_tail = Some(tail);
-        true
+        Some(tail)
     }
 
     /// Continue the tail into the robot segment `next` (from its start); false, and no check
     /// before that segment begins, if the kink shakes the tool too much for the closed form.
-    fn extend_tail(&mut self, tail: &mut RingingTail, y: &[f64], next: &Segment) -> bool {
+    fn extend_tail(
+        &mut self,
+        m: &Model,
+        tail: &mut RingingTail,
+        y: &[f64],
+        next: &Segment,
+    ) -> bool {
         let (s, sd) = tail.stroke_at(next.t0);
-        match self.ringing_piece(next.t0, y, next, next.a, s, sd) {
+        match self.ringing_piece(m, next.t0, y, next, next.a, s, sd) {
             Ok(piece) => {
                 tail.pieces.push(piece);
                 true
@@ -405,132 +424,69 @@ impl Model {
     /// A period of the tool on its stop (s), for spacing the checks: from the linearisation
     /// about the current robot segment's equilibrium on the holding stop when there is one,
     /// else from the stop's stiffness at a depth of 0.1 mm.
-    fn ringing_period_guess(&self) -> f64 {
+    fn ringing_period_guess(&self, m: &Model) -> f64 {
         let k = self
-            .cached_linearisation(self.robot.current().a)
+            .cached_linearisation(m, m.robot.current().a)
             .map(|l| l.coef.k1)
             .filter(|&k1| k1 > 0.0)
-            .unwrap_or(1.5 * self.p.k_e * (1e-4f64).sqrt());
-        2.0 * std::f64::consts::PI * (self.p.m_t / k).sqrt()
-    }
-
-    /// No summary value can change during the tail: `|F_r|` stays below its peak, the stroke
-    /// below its maximum, the stop contact stays closed, the object is never reached, no
-    /// cavitation.
-    fn tail_changes_nothing(
-        &self,
-        t: f64,
-        y: &[f64],
-        seg: &Segment,
-        last: &Segment,
-        tail: &RingingTail,
-    ) -> bool {
-        let p = &self.p;
-        let m = &self.metrics;
-        let mut s_lo = f64::INFINITY;
-        for pc in &tail.pieces {
-            let reach = 1.5 * pc.ring.reach();
-            let speed = 1.5 * pc.ring.speed_bound();
-            let depth = self.holding_depth(pc.s_eq);
-            // (below the largest stroke is also below the sensor's threshold when the sensor
-            // has not switched yet, as while the robot cruises on)
-            if !(reach < 0.5 * depth) || !(pc.s_eq + reach < m.max_stroke) {
-                return false;
-            }
-            // |F_r| = |G| = |m a_r + K1 u + ...| (no object contact)
-            let w0 = pc.ring.w0;
-            let f_bound =
-                p.m_t * (pc.a_r.abs() + 1.5 * w0 * w0 * reach + 2.0 * pc.ring.zeta * w0 * speed);
-            if !(f_bound < 0.9 * m.peak_fr.abs()) {
-                return false;
-            }
-            if let Some(p_cav) = p.p_cav {
-                let p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, pc.s_eq - reach);
-                let dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, speed);
-                if !(p1 - dp.abs() > p_cav) {
-                    return false;
-                }
-            }
-            s_lo = s_lo.min(pc.s_eq - reach);
-        }
-        match self.layout.object {
-            None => true,
-            Some(j) => {
-                let (x_r, v_r, _) = seg.at(t);
-                // where the robot comes to rest (or is at t_end if it never does)
-                let x_r_final = match last.phase {
-                    Phase::Braking => last.at(last.t0 + last.v0 / self.robot.a_brake).0,
-                    _ => last.at(self.t_end).0,
-                };
-                let (x_p, v_p) = (y[j], y[j + 1]);
-                let free_and_away = p.mu_n == 0.0 && v_p >= v_r.max(0.0) && x_p > x_r - s_lo;
-                let resting = (p.mu_n == 0.0 && v_p >= 0.0) || self.regime.obj_stuck;
-                free_and_away || (resting && x_p > x_r_final - s_lo)
-            }
-        }
+            .unwrap_or(1.5 * m.p.k_e * (1e-4f64).sqrt());
+        2.0 * std::f64::consts::PI * (m.p.m_t / k).sqrt()
     }
 }
 
-impl Model {
-    /// The state at `t` after an early end at `(te, y_te)`: the object in free flight (or at rest),
-    /// the tool ringing in closed form, or settled (at rest, or riding with the cruising robot on
-    /// its stop or stuck); the ledger's states as at `te`.
-    pub(crate) fn extrapolated(&self, te: f64, y_te: &[f64], t: f64) -> Vec<f64> {
-        let mut y = y_te.to_vec();
-        let l = self.layout;
-        if let Some(j) = l.object {
-            if !(self.p.mu_n > 0.0 && self.regime.obj_stuck) {
-                y[j] += y[j + 1] * (t - te);
+/// No summary value can change during the tail: `|F_r|` stays below its peak, the stroke
+/// below its maximum, the stop contact stays closed, the object is never reached, no
+/// cavitation.
+fn tail_changes_nothing(
+    m: &Model,
+    peaks: &Peaks,
+    t: f64,
+    y: &[f64],
+    seg: &Segment,
+    last: &Segment,
+    tail: &RingingTail,
+) -> bool {
+    let p = &m.p;
+    let mut s_lo = f64::INFINITY;
+    for pc in &tail.pieces {
+        let reach = 1.5 * pc.ring.reach();
+        let speed = 1.5 * pc.ring.speed_bound();
+        let depth = m.holding_depth(pc.s_eq);
+        // (below the largest stroke is also below the sensor's threshold when the sensor
+        // has not switched yet, as while the robot cruises on)
+        if !(reach < 0.5 * depth) || !(pc.s_eq + reach < peaks.max_stroke) {
+            return false;
+        }
+        // |F_r| = |G| = |m a_r + K1 u + ...| (no object contact)
+        let w0 = pc.ring.w0;
+        let f_bound =
+            p.m_t * (pc.a_r.abs() + 1.5 * w0 * w0 * reach + 2.0 * pc.ring.zeta * w0 * speed);
+        if !(f_bound < 0.9 * peaks.peak_fr.abs()) {
+            return false;
+        }
+        if let Some(p_cav) = p.p_cav {
+            let p1 = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, pc.s_eq - reach);
+            let dp = physics::orifice_pressure_drop(p.c0, p.rho, p.a_p, p.a_o, speed);
+            if !(p1 - dp.abs() > p_cav) {
+                return false;
             }
         }
-        if let (Some(tail), Some(i)) = (&self.ringing_tail, l.tool) {
-            let (s, sd) = tail.stroke_at(t);
-            let (x_r, v_r, _) = self.robot.segment_at(t).at(t);
-            y[i] = x_r - s;
-            y[i + 1] = v_r - sd;
-        } else if let (Some(i), Phase::Cruising) = (l.tool, self.robot.segment_at(te).phase) {
-            // settled while the robot cruises on: the tool rides with it, at rest on its stop
-            // (`resting.rs`) or stuck at its stroke
-            let (x_r, v_r, _) = self.robot.segment_at(t).at(t);
-            match self.rest_stroke {
-                Some(s_eq) => {
-                    y[i] = x_r - s_eq;
-                    y[i + 1] = v_r;
-                }
-                None => y[i] += x_r - self.robot.segment_at(te).at(te).0,
-            }
-        }
-        y
+        s_lo = s_lo.min(pc.s_eq - reach);
     }
-
-    /// Log the event `name` at `t` after an early end at `(te, y_te)`, with the extrapolated state.
-    pub(crate) fn log_extrapolated(&mut self, name: &str, te: f64, y_te: &[f64], t: f64) {
-        let point = self.point_at(t, &self.extrapolated(te, y_te, t));
-        self.log.push(crate::trajectory::EventLogEntry {
-            t,
-            name: name.into(),
-            point,
-        });
-    }
-
-    /// The robot's work on the module during the ringing tail, J: per segment of constant `a_r`,
-    /// `int G v_r dt` with `G = m (a_r - s'')` is `m a_r dx_r - m [sd v_r] + m a_r ds`.
-    pub(crate) fn ringing_tail_work(&self, t_end: f64) -> f64 {
-        let Some(tail) = &self.ringing_tail else {
-            return 0.0;
-        };
-        let m = self.p.m_t;
-        let mut w = 0.0;
-        for (k, pc) in tail.pieces.iter().enumerate() {
-            let t1 = tail.pieces.get(k + 1).map_or(t_end, |n| n.t0);
-            let seg = *self.robot.segment_at(pc.t0);
-            let (x0, v0, _) = seg.at(pc.t0);
-            let (x1, v1, _) = seg.at(t1);
-            let (u0, sd0) = pc.ring.state(pc.t0);
-            let (u1, sd1) = pc.ring.state(t1);
-            w += m * pc.a_r * (x1 - x0) - m * (sd1 * v1 - sd0 * v0) + m * pc.a_r * (u1 - u0);
+    match m.layout.object {
+        None => true,
+        Some(j) => {
+            let (x_r, v_r, _) = seg.at(t);
+            // where the robot comes to rest (or is at t_end if it never does)
+            let x_r_final = match last.phase {
+                Phase::Braking => last.at(last.t0 + last.v0 / m.robot.a_brake).0,
+                _ => last.at(m.t_end).0,
+            };
+            let (x_p, v_p) = (y[j], y[j + 1]);
+            let free_and_away = p.mu_n == 0.0 && v_p >= v_r.max(0.0) && x_p > x_r - s_lo;
+            let resting = (p.mu_n == 0.0 && v_p >= 0.0) || m.regime.obj_stuck;
+            free_and_away || (resting && x_p > x_r_final - s_lo)
         }
-        w
     }
 }
 
@@ -538,6 +494,7 @@ impl Model {
 mod tests {
     use crate::config::Scene;
     use crate::model::Model;
+    use crate::observe::early_end::EarlyEnd;
 
     /// The tool resting on its forward stop at the preload, with the robot cruising: the
     /// equilibrium on the stop is found for a paper-like stop and for a steel one, whose depth
@@ -547,7 +504,8 @@ mod tests {
         for stiffness in ["6e5", "1e11", "1e12"] {
             let mut scene = Scene::default();
             scene.set_from_str("stops.stiffness", stiffness).unwrap();
-            let mut m = Model::new(&scene);
+            let m = Model::new(&scene);
+            let mut early_end = EarlyEnd::new(&scene);
             let y = m.y0.clone();
             let t = 0.05;
             let seg = *m.robot.current();
@@ -557,7 +515,7 @@ mod tests {
             let s0 = -y[i];
             let mut z = y.clone();
             z[i] = x_r - s0;
-            let l = m.linearisation(t, &z, &seg, a_r, s0);
+            let l = early_end.linearisation(&m, t, &z, &seg, a_r, s0);
             assert!(l.is_some(), "stops.stiffness = {stiffness}: no equilibrium");
         }
     }

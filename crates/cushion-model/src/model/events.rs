@@ -273,7 +273,6 @@ impl Model {
         y: &mut [f64],
         ctl: &mut Control,
     ) -> EventAction {
-        self.force_sample = 2;
         // A contact event begins the contact when it is off and ends it when it is on: the
         // regime, not the sign of a value that sits on zero, decides.
         match kind {

@@ -61,7 +61,7 @@ impl Model {
     /// caller never reads (the ledger's power terms when the ledger is off, the forces the
     /// right-hand side does not need), instead of filling and copying the whole struct.
     #[inline(always)]
-    pub(super) fn eval_inline(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
+    pub(crate) fn eval_inline(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
         let p = &self.p;
         let (x_r, v_r, a_r) = seg.at(t);
         let mut e = Eval {

@@ -3,7 +3,6 @@
 
 use super::events::{EventKinematics, EV_BACK, EV_CAVITATION, EV_FWD, EV_OBJECT, EV_SENSOR};
 use super::Model;
-use crate::config::Module;
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
 impl<const N: usize> OdeSystem<N> for Model {
@@ -126,23 +125,7 @@ impl<const N: usize> OdeSystem<N> for Model {
     }
 
     fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
-        self.force_sample = 2;
-        // the robot's acceleration jumps: so does the force on a tool that moves with it
-        self.sample_start = self.p.module == Module::Rigid || self.regime.tool_stuck;
-        if let Some(tb) = self.pending_brake {
-            if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {
-                self.pending_brake = None;
-                self.brake_now(t, y.as_slice(), ctl);
-                return EventAction::Continue;
-            }
-        }
-        if let Some(name) = self.robot.on_time(t) {
-            self.log_event(name, t, y.as_slice());
-            if self.can_end_early(t, y.as_slice()) {
-                self.early_end = Some(t);
-                return EventAction::Stop;
-            }
-        }
+        self.time_stop(t, y.as_slice(), ctl);
         EventAction::Continue
     }
 
@@ -156,7 +139,30 @@ impl<const N: usize> OdeSystem<N> for Model {
         self.log_event(name, t, y.as_slice());
     }
 
-    fn on_step(&mut self, step: &Step<'_, N>, ctl: &mut Control) {
-        self.observe_step(step, ctl);
+    /// The step is over: the regime its handlers set is the next step's.
+    fn on_step(&mut self, _step: &Step<'_, N>, _ctl: &mut Control) {
+        self.step_regime = self.regime;
+    }
+}
+
+impl Model {
+    /// A time stop at `t`: the robot brakes (the sensor's dead time is over) or reaches a kink
+    /// of its profile. Returns whether it was a kink (the robot stands, or starts to cruise),
+    /// after which nothing may be left to change (`observe/early_end.rs`).
+    pub(crate) fn time_stop(&mut self, t: f64, y: &[f64], ctl: &mut Control) -> bool {
+        if let Some(tb) = self.pending_brake {
+            if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {
+                self.pending_brake = None;
+                self.brake_now(t, y, ctl);
+                return false;
+            }
+        }
+        match self.robot.on_time(t) {
+            Some(name) => {
+                self.log_event(name, t, y);
+                true
+            }
+            None => false,
+        }
     }
 }

@@ -1,0 +1,155 @@
+//! The early end: an observer that ends a run once nothing can change any more, and keeps what
+//! is left of it as a [`Tail`] known in closed form (`tail.rs`).
+//!
+//! Once the robot stands, the tool has settled (stuck by dry friction, or its relative speed
+//! below `100 atol` m/s and its acceleration below `1000 atol` m/s^2), and the object is out of
+//! contact and either free and not slower than the tool or stuck on the plane, nothing can
+//! change any more ([`TailKind::Settled`]). The same holds while the robot cruises on with no
+//! brake before `t_end` (its sensor never switched, or the dead time ends after the run), the
+//! object free and not slower than the tool, and the tool stuck short of the sensor or at rest
+//! on its stop (`resting.rs`; [`TailKind::Riding`]). Failing that, the run may end once only the
+//! tool's small ringing on its stop is left (`ringing_tail.rs`; [`TailKind::Ringing`]).
+
+use crate::model::Model;
+use crate::observe::peak_sampler::Peaks;
+use crate::physics::Phase;
+use crate::ringing_tail::Linearisation;
+use crate::tail::{Tail, TailKind};
+use crate::Scene;
+
+/// The early-end observer (`solver.early_end`), with the ringing tail's search
+/// (`solver.ringing_tail`).
+pub(crate) struct EarlyEnd {
+    /// The tool has settled below these relative speed (m/s) and acceleration (m/s^2).
+    settle_v: f64,
+    settle_a: f64,
+    /// The solver's tolerances (for the tool's rest while the robot cruises, `resting.rs`).
+    pub(crate) atol: f64,
+    pub(crate) rtol: f64,
+    pub(crate) ringing_enabled: bool,
+    /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
+    pub(crate) ringing_max_amplitude: f64,
+    /// Error the closed form may leave in the robot impulse, N s: rtol times the momentum scale
+    /// `(m_t + m_p) v_max`.
+    pub(crate) ringing_impulse_tolerance: f64,
+    /// No ringing-tail check before this time.
+    pub(crate) next_ringing_check: f64,
+    /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
+    pub(crate) ringing_cache: Vec<(f64, bool, Linearisation)>,
+    /// The run's tail, once it has ended early.
+    pub tail: Option<Tail>,
+}
+
+impl EarlyEnd {
+    pub fn new(scene: &Scene) -> EarlyEnd {
+        let atol = scene.solver.atol;
+        let m_p = if scene.object.enabled {
+            scene.object.mass
+        } else {
+            0.0
+        };
+        EarlyEnd {
+            settle_v: 100.0 * atol,
+            settle_a: 1000.0 * atol,
+            atol,
+            rtol: scene.solver.rtol,
+            ringing_enabled: scene.solver.ringing_tail,
+            ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
+            ringing_impulse_tolerance: scene.solver.rtol
+                * (scene.tool.mass + m_p)
+                * scene.robot.approach_speed,
+            next_ringing_check: 0.0,
+            ringing_cache: Vec::new(),
+            tail: None,
+        }
+    }
+
+    /// Whether the run may end at `(t, y)` (see the module docs); keeps its tail when it may.
+    /// `peaks` are the run's peaks so far: a ringing tail must not change them.
+    pub fn check(&mut self, m: &Model, peaks: &Peaks, t: f64, y: &[f64]) -> bool {
+        if !(t < m.t_end) {
+            return false;
+        }
+        match self.tail_from(m, peaks, t, y) {
+            Some(kind) => {
+                self.tail = Some(Tail { t, kind });
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// What is left of the run from `(t, y)`, if it is known in closed form.
+    fn tail_from(&mut self, m: &Model, peaks: &Peaks, t: f64, y: &[f64]) -> Option<TailKind> {
+        let stopped = m.robot.stopped();
+        let ringing = |s: &mut Self| s.try_ringing_tail(m, peaks, t, y).map(TailKind::Ringing);
+        if !((stopped || m.cruising_to_end()) && !m.regime.obj_contact) {
+            return ringing(self);
+        }
+        let seg = *m.robot.current();
+        // a cruising robot's run goes on while it may reach the object again (before the
+        // impact, always): found from the state, without the physics. The tool that may end
+        // here rides on with the robot, so the object must outrun the robot as well as the
+        // tool's speed of the moment, which a tool at rest on its stop may have a little below
+        // the robot's (by up to its rest tolerance)
+        if !stopped {
+            let v_r = seg.at(t).1;
+            let v_t = m.layout.tool.map_or(v_r, |i| y[i + 1]);
+            if !m.object_outruns(y, v_t.max(v_r)) {
+                return ringing(self);
+            }
+        }
+        let e = m.eval(t, y, &seg, &m.regime);
+        // (for a cruising robot, the object was found out of reach above)
+        let object_done = !stopped
+            || match m.layout.object {
+                None => true,
+                Some(_) => {
+                    if m.p.mu_n > 0.0 {
+                        m.regime.obj_stuck
+                    } else {
+                        e.v_p >= e.v_t.max(0.0)
+                    }
+                }
+            };
+        let settled = match m.layout.tool {
+            None if stopped => Some(TailKind::Settled),
+            None => Some(TailKind::Riding { stroke: None }),
+            Some(_) if stopped => (m.regime.tool_stuck
+                || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a))
+                .then_some(TailKind::Settled),
+            // the robot cruises on: stuck (short of the sensor, or it would have switched; and
+            // no compressible liquid still flowing through the orifice), or at rest on a stop
+            Some(_) if m.regime.tool_stuck => m
+                .layout
+                .liquid
+                .is_none()
+                .then_some(TailKind::Riding { stroke: None }),
+            Some(_) => self
+                .rest_on_stop(m, t, y, &seg, &e)
+                .map(|s| TailKind::Riding { stroke: Some(s) }),
+        };
+        match settled {
+            Some(kind) if object_done => Some(kind),
+            _ => ringing(self),
+        }
+    }
+}
+
+impl Model {
+    /// The object can never be touched again by a robot that cruises on: absent, or free (no
+    /// plane friction) and not slower than `v` (m/s) in the state `y`.
+    pub(crate) fn object_outruns(&self, y: &[f64], v: f64) -> bool {
+        match self.layout.object {
+            None => true,
+            Some(j) => self.p.mu_n == 0.0 && y[j + 1] >= v.max(0.0),
+        }
+    }
+
+    /// The robot cruises and will not brake before `t_end`: its sensor has not switched (it may
+    /// yet), or the dead time ends after the run.
+    pub(crate) fn cruising_to_end(&self) -> bool {
+        self.robot.current().phase == Phase::Cruising
+            && self.pending_brake.is_none_or(|tb| tb >= self.t_end)
+    }
+}
