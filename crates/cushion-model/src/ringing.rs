@@ -58,6 +58,8 @@ pub(crate) struct Ringing {
     pub w0: f64,
     pub zeta: f64,
     wd: f64,
+    /// `atan2(lambda, w_d)`: the ripple's phase offset (rad).
+    theta: f64,
     lambda: f64,
     mu: f64,
     nu: f64,
@@ -91,6 +93,7 @@ impl Ringing {
             w0,
             zeta,
             wd: w0 * (1.0 - zeta * zeta).sqrt(),
+            theta: 0.0,
             lambda,
             mu: c.orifice_decay(),
             nu: 3.0 * alpha3 / (8.0 * w0) - 5.0 * alpha2 * alpha2 / (12.0 * w0.powi(3)),
@@ -99,6 +102,7 @@ impl Ringing {
             a0: 0.0,
             psi0: 0.0,
         };
+        r.theta = r.lambda.atan2(r.wd);
         // Amplitude and phase from the state: the linear oscillator's values, then Newton on
         // `state(t0) = (u0, v0)` (the harmonic and mean terms are of order h2 a^2).
         let a_lin = u0.hypot((v0 + r.lambda * u0) / r.wd);
@@ -236,7 +240,7 @@ impl Ringing {
     /// plus the second harmonic and mean shift of the quadratic stiffness.
     fn shape(&self, a: f64, psi: f64) -> (f64, f64) {
         // ripple of amplitude and phase (variation of parameters, averaged to first order)
-        let x = psi + self.lambda.atan2(self.wd);
+        let x = psi + self.theta;
         let (s2x, c2x) = (2.0 * x).sin_cos();
         let (s4x, c4x) = (4.0 * x).sin_cos();
         let tan = self.lambda / self.wd;

@@ -206,7 +206,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     if let Some(tail) = &tail {
         y = tail.play(&mut model, &out.y, t_end);
         if matches!(tail.kind, TailKind::Ringing(_)) {
-            ledger::close_after_tail(&model, tail, &out.y, t_end, &mut y);
+            ledger::add_tail(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
         }
         t = t_end;
     }

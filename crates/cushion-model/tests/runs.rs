@@ -714,14 +714,13 @@ fn ringing_tail_equals_running_to_t_end() {
             ),
             "{what}"
         );
+        // the ledger over the tail is computed from the force law along the closed form, so its
+        // residual holds the closed form's energy error too: up to 14 rtol here (the 5 kPa gas
+        // spring, with the shallowest stop), where the integrated run has 1.5 rtol
         assert!(
-            close(
-                a.energy_residual.unwrap(),
-                b.energy_residual.unwrap(),
-                0.0,
-                1e-6
-            ),
-            "{what}"
+            a.energy_residual.unwrap() <= 20.0 * s.solver.rtol,
+            "{what}: {:?}",
+            a.energy_residual
         );
         assert!(close(
             a.max_gas_pressure.unwrap_or(0.0),
@@ -1410,4 +1409,21 @@ fn early_end_trajectory_keeps_its_uniform_samples() {
         assert!(close(a.x_r, b.x_r, 1e-12, 1e-12) && a.f_r == b.f_r);
     }
     assert_eq!(pts.last().unwrap().t, 0.3);
+}
+
+#[test]
+fn the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance() {
+    // The ledger's residual over a ringing tail is that of the closed form against the force
+    // law (`tail.rs::tests`): on the shallowest stop of the tested scenes (5 kPa gas) it is 14
+    // rtol at rtol 1e-6 and 3 rtol at 1e-8, where the tail takes over at smaller amplitudes.
+    for rtol in ["1e-6", "1e-8"] {
+        let s = with(
+            paper("paper-hydraulic-dt70"),
+            &[("hydraulic.gas_pressure", "5000"), ("solver.rtol", rtol)],
+        );
+        let r = run(&s);
+        assert!(r.events.iter().any(|e| e.name == "early_end"), "rtol {rtol}");
+        let residual = r.summary.energy_residual.unwrap();
+        assert!(residual <= 20.0 * s.solver.rtol, "rtol {rtol}: {residual:e}");
+    }
 }
