@@ -27,6 +27,16 @@ pub struct EnergyLedger {
 
 /// Energy ledger of a finished run: `(residual, [W, dKE, dE_gas, dE_elastic, D_total])`.
 pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f64; 5])> {
+    balance(model, t, y).map(|(residual, _, terms)| (residual, terms))
+}
+
+/// The ledger's scale at `(t, y)`: its largest term (J), which the residual is relative to.
+pub(crate) fn scale(model: &Model, t: f64, y: &[f64]) -> Option<f64> {
+    balance(model, t, y).map(|(_, scale, _)| scale)
+}
+
+/// `(residual, scale, terms)` of the ledger at `(t, y)`.
+fn balance(model: &Model, t: f64, y: &[f64]) -> Option<(f64, f64, [f64; 5])> {
     let l = model.layout;
     let w = y[l.work?];
     let p = &model.p;
@@ -98,7 +108,7 @@ pub(crate) fn energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<(f64, [f
     } else {
         mismatch.abs()
     };
-    Some((residual, [w, d_ke, d_gas, d_el, d_total]))
+    Some((residual, scale, [w, d_ke, d_gas, d_el, d_total]))
 }
 
 /// After an early end with a ringing tail: the robot's work during it (exact for the tail's
