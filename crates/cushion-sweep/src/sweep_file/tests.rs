@@ -1,0 +1,58 @@
+//! Tests of `sweep_file.rs`.
+
+use super::*;
+
+fn parse(text: &str) -> Result<SweepFile, String> {
+    SweepFile::from_str_at(text, Path::new("/nonexistent/test.toml"))
+}
+
+#[test]
+fn spacing_hits_ends() {
+    assert_eq!(linspace(0.0, 0.1, 11)[10], 0.1);
+    assert_eq!(linspace(0.0, 0.1, 11)[0], 0.0);
+    assert_eq!(linspace(2.0, 3.0, 1), vec![2.0]);
+    let l = logspace(300.0, 1e5, 8);
+    assert_eq!(l.len(), 8);
+    assert_eq!((l[0], l[7]), (300.0, 1e5));
+    for w in l.windows(2) {
+        assert!((w[1] / w[0] - (1e5f64 / 300.0).powf(1.0 / 7.0)).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn grid_counts_and_name_default() {
+    let s = parse(
+        "[[axis]]\nkey = \"robot.dead_time\"\nvalues = [0.01, 0.07]\n[[axis]]\nkey = \"module\"\nvalues = [\"hydraulic\", \"bistable\", \"rigid\"]\n",
+    )
+    .unwrap();
+    assert_eq!(s.name, "test");
+    assert_eq!(s.n_runs().unwrap(), 6);
+    assert_eq!(s.axes[1].kind, AxisKind::Text);
+}
+
+#[test]
+fn errors_name_the_key() {
+    let cases: &[(&str, &str)] = &[
+        ("nmae = \"x\"\n", "unknown key `nmae`"),
+        ("[[axis]]\nkey = \"robot.dead_tme\"\nvalues = [1]\n", "robot.dead_tme"),
+        ("[[axis]]\nkey = \"object.mass\"\nvalues = []\n", "`values` is empty"),
+        ("[[axis]]\nkey = \"object.mass\"\nlinspace = [0.1, 1, 0]\n", "n must be an integer >= 1"),
+        ("[[axis]]\nkey = \"object.mass\"\nrange = [0.1, 1]\n", "a `range` axis needs sampling mode lhs or sobol"),
+        (
+            "[sampling]\nmode = \"zip\"\n[[axis]]\nkey = \"object.mass\"\nvalues = [1, 2]\n[[axis]]\nkey = \"robot.dead_time\"\nvalues = [1]\n",
+            "zip needs axes of one length",
+        ),
+        ("[sampling]\nmode = \"lhs\"\n", "needs `samples`"),
+        ("[sampling]\nmode = \"sobol\"\nsamples = 100000\n", "at most 65536"),
+        ("[sampling]\nmode = \"grid\"\nsamples = 10\n", "`samples` is for lhs and sobol only"),
+        ("[set]\n\"object.mas\" = 1\n", "object.mas"),
+        ("[output]\nrecord = [99]\n", "not a run number"),
+        ("name = \"a/b\"\n", "`name`"),
+        ("[[axis]]\nkey = \"object.mass\"\nlogspace = [0, 1, 3]\n", "endpoints"),
+        ("x = [\n", "line"),
+    ];
+    for (text, want) in cases {
+        let e = parse(text).unwrap_err();
+        assert!(e.contains(want), "{text:?}: {e:?} lacks {want:?}");
+    }
+}
