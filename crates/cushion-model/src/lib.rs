@@ -18,7 +18,7 @@
 //!   `k + chi dd` rises above `1e-12 k`, so no step integrates across the kink (inside a step,
 //!   DOPRI5's error estimate does not see a kink for what it is, and the error stops following
 //!   the tolerance:
-//!   `tests/runs.rs::a_contact_released_before_the_bodies_part_converges_with_the_tolerance`).
+//!   `tests/friction_and_contacts.rs::a_contact_released_before_the_bodies_part_converges_with_the_tolerance`).
 //!   Contact begin/end are events; a contact begins at a penetration of 1e-14 m and ends at 0
 //!   (a hysteresis far below any force that matters, `k 1e-21 N`), so that a touch right after
 //!   an end is never lost to the integrator's rule that a function starting a step at exactly

@@ -94,9 +94,11 @@ impl Tail {
     /// rings. The powers are integrated by 8-point Gauss–Legendre on each half period of each
     /// piece of the ringing (they are smooth there: no contact opens or closes), until what the
     /// ringing's energy `m (w0 a)^2 / 2` still has to lose in the piece has fallen below
-    /// `negligible` (J); that rest is added as it is lost. Closing the ledger with these (and the robot's work) leaves a
-    /// residual that measures how far the closed form departs from the force law
-    /// (`tests/runs.rs::the_ledger_over_a_ringing_tail_is_computed_not_closed`).
+    /// `negligible` (J); that rest is added as it is lost. Closing the ledger with these (and
+    /// the robot's work) leaves a residual that measures how far the closed form departs from
+    /// the force law
+    /// (`tests::the_ledger_over_a_ringing_tail_checks_the_closed_form`,
+    /// `tests/early_end.rs::the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance`).
     pub fn dissipation(&self, m: &Model, y_te: &[f64], t_end: f64, negligible: f64) -> [f64; 3] {
         let mut d = [0.0; 3];
         let TailKind::Ringing(tail) = &self.kind else {

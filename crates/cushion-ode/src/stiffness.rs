@@ -7,7 +7,7 @@
 //! (0.95-0.97 of it, for many steps in a row) or wanders about it, so a threshold 2 % under
 //! the boundary can miss a run that steps at its stability limit for good
 //! (`tests::fires_on_a_plateau_just_under_the_boundary`; in `cushion-model`,
-//! `tests/runs.rs::a_run_held_at_the_stability_limit_is_flagged_stiff`, a run held there by
+//! `tests/statuses.rs::a_run_held_at_the_stability_limit_is_flagged_stiff`, a run held there by
 //! the orifice's damping). 0.9 of the boundary is what OrdinaryDiffEq's `AutoSwitch` uses
 //! (`stifftol = 9/10` of the method's stability size). A step bound by the accuracy of a fast
 //! mode keeps its `h |lambda|` below it: that mode's error would exceed the tolerance first.

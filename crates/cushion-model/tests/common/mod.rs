@@ -1,4 +1,7 @@
 //! What several test files need: a paper scene with overrides, and a run that must end ok.
+#![allow(dead_code)]
+
+pub mod whole_runs;
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
