@@ -47,6 +47,16 @@ fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
         && a.err_low.is_none_or(|e| e.iter().all(|v| v.is_finite()))
 }
 
+/// What became of one attempted step.
+enum Tried<const N: usize> {
+    /// Accepted (and completed), with the step size the controller proposes next.
+    Accepted(Attempt<N>, f64),
+    /// Rejected, or failed before its error estimate: try again with this size.
+    Retry(f64),
+    /// The run ends here.
+    End(Status, String),
+}
+
 struct Integration<'a, S, const N: usize> {
     sys: &'a mut S,
     opts: &'a SolverOptions,
@@ -228,84 +238,16 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
 
             let (t, y, f0) = (self.t, self.y, self.f);
-            let counted = Counted::new(&*self.sys);
-            let outcome = stepper.step(&counted, t, &y, &f0, h);
-            self.stats.rhs_evals += counted.evals();
-            let mut attempt = match outcome {
-                Ok(a) if is_finite(&a) => a,
-                failed => {
-                    let failure = match failed {
-                        Err(failure) => failure,
-                        Ok(_) => StepFailure::NonFinite,
-                    };
-                    if !adaptive {
-                        let msg = match failure {
-                            StepFailure::NonFinite => format!(
-                                "non-finite state in the step from t = {t} (fixed step {h:e})"
-                            ),
-                            other => format!("{other} in the step from t = {t} (fixed step {h:e})"),
-                        };
-                        return (Status::NonFinite, msg);
-                    }
-                    self.stats.rejected += 1;
-                    if failure != StepFailure::NonFinite {
-                        self.stats.failed_solves += 1;
-                    }
-                    stepper.rejected();
-                    h = controller.after_failure(h, failure);
+            let (attempt, mut h_new) = match self.attempt(stepper, &mut controller, adaptive, h) {
+                Tried::Accepted(attempt, h_new) => (attempt, h_new),
+                Tried::Retry(h_retry) => {
+                    h = h_retry;
                     continue;
                 }
+                Tried::End(status, msg) => return (status, msg),
             };
-            let mut h_new = h;
-            if let Some(err) = &attempt.err {
-                let en = match &attempt.err_low {
-                    None => self.weights.error_norm(err, &y, &attempt.y1),
-                    Some(err3) => self.weights.dop853_error_norm(err, err3, &y, &attempt.y1),
-                };
-                let (accepted, hn) = controller.next(en, h);
-                if !accepted {
-                    self.stats.rejected += 1;
-                    stepper.rejected();
-                    h = hn;
-                    continue;
-                }
-                h_new = hn;
-            }
-            self.stats.steps += 1;
-            // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
-            let counted = Counted::new(&*self.sys);
-            let completed = stepper.complete(&counted, t, &y, h, &mut attempt);
-            self.stats.rhs_evals += counted.evals();
-            stepper.accepted();
-            if completed && !is_finite(&attempt) {
-                self.t = t + h;
-                self.y = attempt.y1;
-                return (
-                    Status::NonFinite,
-                    format!("f is not finite at the accepted state at t = {}", t + h),
-                );
-            }
-
-            // Stiffness test.
-            if self.opts.stiffness != StiffnessAction::Off {
-                if let Some(hl) = stepper.stiffness_estimate(h, &attempt) {
-                    if let Some(since) = stiffness.observe(t, hl) {
-                        if !self.stats.stiff {
-                            self.stats.stiff = true;
-                            self.stats.stiff_since = Some(since);
-                        }
-                        if self.opts.stiffness == StiffnessAction::Stop {
-                            self.t = t + h;
-                            self.y = attempt.y1;
-                            let msg = format!(
-                                "the problem is stiff since t = {since} (h*lambda > {:.3} for {} steps)",
-                                stiffness.threshold(),
-                                crate::stiffness::STIFF_STEPS
-                            );
-                            return (Status::Stiff, msg);
-                        }
-                    }
-                }
+            if let Some(end) = self.observe_stiffness(stepper, &mut stiffness, t, h, &attempt) {
+                return end;
             }
 
             let t1 = if landing { next_stop } else { t + h };
@@ -321,7 +263,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 &mut self.stats,
             );
             let cut = action != EventAction::Continue;
-            let (t_new, mut y_new) = if cut {
+            let (t_new, y_new) = if cut {
                 (t_cut, y_cut)
             } else {
                 (t1, attempt.y1)
@@ -377,39 +319,166 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 if t_new >= self.t_end {
                     return (Status::Success, String::new());
                 }
-                // A time stop: let the system switch regime, then restart f.
-                self.stops.remove(0);
-                self.stats.time_stops += 1;
-                let action = self.sys.on_time_stop(t_new, &mut y_new, &mut ctl);
-                self.y = y_new;
-                self.take_new_stops(&mut ctl);
-                if action == EventAction::Stop || ctl.stop_requested {
-                    return (Status::StoppedByEvent, String::new());
-                }
-                stepper.restart();
-                if !self.restart_at(t_new, &y_new) {
-                    return (
-                        Status::NonFinite,
-                        format!("f is not finite at the time stop t = {t_new}"),
-                    );
+                if let Some(end) = self.take_time_stop(stepper, t_new, y_new, &mut ctl) {
+                    return end;
                 }
                 continue;
             }
             // The next step's first slope: the method's last stage (FSAL), or evaluated here.
-            self.f = match attempt.f1 {
-                Some(f1) => f1,
-                None => {
-                    let f1 = self.rhs(t_new, &y_new);
-                    if !f1.iter().all(|v| v.is_finite()) {
-                        return (
-                            Status::NonFinite,
-                            format!("f is not finite at the accepted state at t = {t_new}"),
-                        );
-                    }
-                    f1
-                }
-            };
+            if let Some(end) = self.take_next_slope(attempt.f1, t_new, &y_new) {
+                return end;
+            }
         }
+    }
+
+    /// Attempt one step of size `h` from the current state and judge it by the error
+    /// estimate (fixed-step methods accept every finite step).
+    fn attempt<M: Stepper<N>>(
+        &mut self,
+        stepper: &mut M,
+        controller: &mut M::Controller,
+        adaptive: bool,
+        h: f64,
+    ) -> Tried<N> {
+        let (t, y, f0) = (self.t, self.y, self.f);
+        let counted = Counted::new(&*self.sys);
+        let outcome = stepper.step(&counted, t, &y, &f0, h);
+        self.stats.rhs_evals += counted.evals();
+        let mut attempt = match outcome {
+            Ok(a) if is_finite(&a) => a,
+            failed => {
+                let failure = match failed {
+                    Err(failure) => failure,
+                    Ok(_) => StepFailure::NonFinite,
+                };
+                if !adaptive {
+                    let msg = match failure {
+                        StepFailure::NonFinite => {
+                            format!("non-finite state in the step from t = {t} (fixed step {h:e})")
+                        }
+                        other => format!("{other} in the step from t = {t} (fixed step {h:e})"),
+                    };
+                    return Tried::End(Status::NonFinite, msg);
+                }
+                self.stats.rejected += 1;
+                if failure != StepFailure::NonFinite {
+                    self.stats.failed_solves += 1;
+                }
+                stepper.rejected();
+                return Tried::Retry(controller.after_failure(h, failure));
+            }
+        };
+        let mut h_new = h;
+        if let Some(err) = &attempt.err {
+            let en = match &attempt.err_low {
+                None => self.weights.error_norm(err, &y, &attempt.y1),
+                Some(err3) => self.weights.dop853_error_norm(err, err3, &y, &attempt.y1),
+            };
+            let (accepted, hn) = controller.next(en, h);
+            if !accepted {
+                self.stats.rejected += 1;
+                stepper.rejected();
+                return Tried::Retry(hn);
+            }
+            h_new = hn;
+        }
+        self.stats.steps += 1;
+        // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
+        let counted = Counted::new(&*self.sys);
+        let completed = stepper.complete(&counted, t, &y, h, &mut attempt);
+        self.stats.rhs_evals += counted.evals();
+        stepper.accepted();
+        if completed && !is_finite(&attempt) {
+            self.t = t + h;
+            self.y = attempt.y1;
+            return Tried::End(
+                Status::NonFinite,
+                format!("f is not finite at the accepted state at t = {}", t + h),
+            );
+        }
+        Tried::Accepted(attempt, h_new)
+    }
+
+    /// Hairer's stiffness test on an accepted step from `t` of size `h`; the run's end when the
+    /// options say to stop on stiffness.
+    fn observe_stiffness<M: Stepper<N>>(
+        &mut self,
+        stepper: &M,
+        stiffness: &mut StiffnessDetector,
+        t: f64,
+        h: f64,
+        attempt: &Attempt<N>,
+    ) -> Option<(Status, String)> {
+        if self.opts.stiffness == StiffnessAction::Off {
+            return None;
+        }
+        let since = stiffness.observe(t, stepper.stiffness_estimate(h, attempt)?)?;
+        if !self.stats.stiff {
+            self.stats.stiff = true;
+            self.stats.stiff_since = Some(since);
+        }
+        if self.opts.stiffness != StiffnessAction::Stop {
+            return None;
+        }
+        self.t = t + h;
+        self.y = attempt.y1;
+        let msg = format!(
+            "the problem is stiff since t = {since} (h*lambda > {:.3} for {} steps)",
+            stiffness.threshold(),
+            crate::stiffness::STIFF_STEPS
+        );
+        Some((Status::Stiff, msg))
+    }
+
+    /// The step landed on the time stop `t`: the system switches regime there, and the method
+    /// restarts. The run's end, if the handler ends it or `f` is not finite after it.
+    fn take_time_stop<M: Stepper<N>>(
+        &mut self,
+        stepper: &mut M,
+        t: f64,
+        mut y: State<N>,
+        ctl: &mut Control,
+    ) -> Option<(Status, String)> {
+        self.stops.remove(0);
+        self.stats.time_stops += 1;
+        let action = self.sys.on_time_stop(t, &mut y, ctl);
+        self.y = y;
+        self.take_new_stops(ctl);
+        if action == EventAction::Stop || ctl.stop_requested {
+            return Some((Status::StoppedByEvent, String::new()));
+        }
+        stepper.restart();
+        if !self.restart_at(t, &y) {
+            return Some((
+                Status::NonFinite,
+                format!("f is not finite at the time stop t = {t}"),
+            ));
+        }
+        None
+    }
+
+    /// The next step's first slope at `(t, y)`: the method's last stage `f1` (FSAL), or
+    /// evaluated here. The run's end if it is not finite.
+    fn take_next_slope(
+        &mut self,
+        f1: Option<State<N>>,
+        t: f64,
+        y: &State<N>,
+    ) -> Option<(Status, String)> {
+        self.f = match f1 {
+            Some(f1) => f1,
+            None => {
+                let f1 = self.rhs(t, y);
+                if !f1.iter().all(|v| v.is_finite()) {
+                    return Some((
+                        Status::NonFinite,
+                        format!("f is not finite at the accepted state at t = {t}"),
+                    ));
+                }
+                f1
+            }
+        };
+        None
     }
 
     /// After a handler (event or time stop) at `(t, y)`: evaluate `f` and the event functions
