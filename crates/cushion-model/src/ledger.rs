@@ -4,7 +4,6 @@
 use crate::config::Module;
 use crate::model::Model;
 use crate::physics;
-use crate::tail::Tail;
 
 /// The terms of the energy ledger at the end of a run (SPEC section 5), J.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,31 +108,4 @@ fn balance(model: &Model, t: f64, y: &[f64]) -> Option<(f64, f64, [f64; 5])> {
         mismatch.abs()
     };
     Some((residual, scale, [w, d_ke, d_gas, d_el, d_total]))
-}
-
-/// After an early end with a ringing tail: the robot's work during it (exact for the tail's
-/// motion) and what the model's force law dissipates along it (`Tail::dissipation`), each added
-/// to its ledger state, so that the residual checks the closed form as it checks the
-/// integration. What the ringing still holds below `1e-2 rtol` of the ledger's work is left
-/// out of the quadrature.
-pub(crate) fn add_tail(
-    model: &Model,
-    tail: &Tail,
-    y_te: &[f64],
-    t_end: f64,
-    rtol: f64,
-    y: &mut [f64],
-) {
-    let l = model.layout;
-    let Some(k_work) = l.work else {
-        return;
-    };
-    y[k_work] += tail.robot_work(model, t_end);
-    let negligible = rtol * y_te[k_work].abs();
-    let d = tail.dissipation(model, y_te, t_end, negligible);
-    for (k, dk) in [l.d_orifice, l.d_friction, l.d_contact].into_iter().zip(d) {
-        if let Some(k) = k {
-            y[k] += dk;
-        }
-    }
 }

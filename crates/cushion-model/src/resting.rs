@@ -17,8 +17,8 @@
 //! riding with the robot: the extrapolation puts it there (`x_t = x_r - s_eq`, `v_t = v_r`).
 
 use crate::model::{Eval, Model};
-use crate::observe::early_end::EarlyEnd;
 use crate::physics::Segment;
+use crate::ringing_tail::StopRinging;
 
 /// How much the tool's deviation from rest must decay before `t_end`.
 const DECAY_BEFORE_END: f64 = 1000.0;
@@ -26,7 +26,7 @@ const DECAY_BEFORE_END: f64 = 1000.0;
 /// Largest deviation from rest, as a multiple of the speed tolerance `atol + rtol |v_r|`.
 const REST_SPEED: f64 = 10.0;
 
-impl EarlyEnd {
+impl StopRinging {
     /// The equilibrium stroke (m) of a tool that has come to rest on its stop, if it has (see
     /// the module docs); `e` is the physics at `(t, y)` on the robot segment `seg`. It must also
     /// stay short of the sensor, if that has not switched yet.

@@ -25,12 +25,12 @@
 
 use crate::config::Module;
 use crate::model::Model;
-use crate::observe::early_end::EarlyEnd;
 use crate::observe::peak_sampler::Peaks;
 use crate::physics::{self, Phase, Segment};
 use crate::ringing::Ringing;
 
 mod linearisation;
+use crate::Scene;
 pub(crate) use linearisation::Linearisation;
 
 /// Largest ringing amplitude handed to the closed form, as a fraction of the holding stop's
@@ -79,6 +79,47 @@ fn relative_error(eps: f64, zeta_q: f64) -> f64 {
     0.01 * eps + 0.5 * eps * eps + 3.0 * zeta_q * zeta_q
 }
 
+/// The tool on the stop that holds it: its equilibria (one per robot acceleration and holding
+/// stop, kept), its rest there while the robot cruises (`resting.rs`), and the search for a
+/// ringing tail (when to look again, what the closed form may leave).
+pub(crate) struct StopRinging {
+    /// The solver's tolerances.
+    pub(crate) atol: f64,
+    pub(crate) rtol: f64,
+    /// `solver.ringing_tail`.
+    pub(crate) ringing_enabled: bool,
+    /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
+    pub(crate) ringing_max_amplitude: f64,
+    /// Error the closed form may leave in the robot impulse, N s: rtol times the momentum scale
+    /// `(m_t + m_p) v_max`.
+    pub(crate) ringing_impulse_tolerance: f64,
+    /// No ringing-tail check before this time.
+    pub(crate) next_ringing_check: f64,
+    /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
+    pub(crate) ringing_cache: Vec<(f64, bool, Linearisation)>,
+}
+
+impl StopRinging {
+    pub fn new(scene: &Scene) -> StopRinging {
+        let m_p = if scene.object.enabled {
+            scene.object.mass
+        } else {
+            0.0
+        };
+        StopRinging {
+            atol: scene.solver.atol,
+            rtol: scene.solver.rtol,
+            ringing_enabled: scene.solver.ringing_tail,
+            ringing_max_amplitude: max_amplitude(scene.solver.rtol),
+            ringing_impulse_tolerance: scene.solver.rtol
+                * (scene.tool.mass + m_p)
+                * scene.robot.approach_speed,
+            next_ringing_check: 0.0,
+            ringing_cache: Vec::new(),
+        }
+    }
+}
+
 impl RingingTail {
     /// A bound of the error the closed form leaves in the robot impulse at `t_end`, N s: the
     /// tool's momentum error `m_t w0 e a(t_end)` from each piece's relative error `e`, carried
@@ -111,7 +152,7 @@ impl RingingTail {
     }
 }
 
-impl EarlyEnd {
+impl StopRinging {
     /// The ringing through `(s, sd)` at `t` about the equilibrium of a robot segment with
     /// acceleration `a_r`. `Err(Some(wait))` if it rings too strongly for the closed form now,
     /// with the time (s) its amplitude needs to decay to the limit at the largest decay rate it
@@ -380,9 +421,9 @@ fn tail_changes_nothing(
 
 #[cfg(test)]
 mod tests {
+    use super::StopRinging;
     use crate::config::Scene;
     use crate::model::Model;
-    use crate::observe::early_end::EarlyEnd;
 
     /// The tool resting on its forward stop at the preload, with the robot cruising: the
     /// equilibrium on the stop is found for a paper-like stop and for a steel one, whose depth
@@ -393,7 +434,7 @@ mod tests {
             let mut scene = Scene::default();
             scene.set_from_str("stops.stiffness", stiffness).unwrap();
             let m = Model::new(&scene);
-            let mut early_end = EarlyEnd::new(&scene);
+            let mut stop = StopRinging::new(&scene);
             let y = m.y0.clone();
             let t = 0.05;
             let seg = *m.robot.current();
@@ -403,7 +444,7 @@ mod tests {
             let s0 = -y[i];
             let mut z = y.clone();
             z[i] = x_r - s0;
-            let l = early_end.linearisation(&m, t, &z, &seg, a_r, s0);
+            let l = stop.linearisation(&m, t, &z, &seg, a_r, s0);
             assert!(l.is_some(), "stops.stiffness = {stiffness}: no equilibrium");
         }
     }

@@ -199,6 +199,33 @@ impl Tail {
     }
 }
 
+/// After an early end with a ringing tail: the robot's work during it (exact for the tail's
+/// motion) and what the model's force law dissipates along it (`Tail::dissipation`), each added
+/// to its ledger state, so that the residual checks the closed form as it checks the
+/// integration. Once what the ringing still has to lose is below rtol of the ledger's work,
+/// the quadrature stops and that rest is added as the ringing loses it.
+pub(crate) fn add_to_ledger(
+    model: &Model,
+    tail: &Tail,
+    y_te: &[f64],
+    t_end: f64,
+    rtol: f64,
+    y: &mut [f64],
+) {
+    let l = model.layout;
+    let Some(k_work) = l.work else {
+        return;
+    };
+    y[k_work] += tail.robot_work(model, t_end);
+    let negligible = rtol * y_te[k_work].abs();
+    let d = tail.dissipation(model, y_te, t_end, negligible);
+    for (k, dk) in [l.d_orifice, l.d_friction, l.d_contact].into_iter().zip(d) {
+        if let Some(k) = k {
+            y[k] += dk;
+        }
+    }
+}
+
 /// Gauss–Legendre nodes on `[-1, 1]` (the positive half; each with its mirror) and weights:
 /// six nodes a half period integrate the powers to about 2 % of the tail's dissipation (16
 /// nodes a quarter period as the reference), a small share of a residual the closed form's own
@@ -215,8 +242,8 @@ mod tests {
     use crate::config::Scene;
     use crate::ledger::energy_ledger;
     use crate::model::Model;
-    use crate::observe::early_end::EarlyEnd;
     use crate::ringing::{Coefficients, Ringing};
+    use crate::ringing_tail::StopRinging;
     use crate::ringing_tail::{Piece, RingingTail};
 
     /// The paper's hydraulic tool ringing on its forward stop under a standing robot, from 0.2
@@ -232,7 +259,7 @@ mod tests {
         let seg = *m.robot.current();
         let i = m.layout.tool.unwrap();
         let mut y = m.y0.clone();
-        let lin = EarlyEnd::new(&scene)
+        let lin = StopRinging::new(&scene)
             .linearisation(&m, t, &y, &seg, 0.0, m.preload_stroke)
             .unwrap();
         let u0 = 0.2 * lin.depth;

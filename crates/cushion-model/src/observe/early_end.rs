@@ -13,7 +13,7 @@
 use crate::model::Model;
 use crate::observe::peak_sampler::Peaks;
 use crate::physics::Phase;
-use crate::ringing_tail::Linearisation;
+use crate::ringing_tail::StopRinging;
 use crate::tail::{Tail, TailKind};
 use crate::Scene;
 
@@ -23,19 +23,8 @@ pub(crate) struct EarlyEnd {
     /// The tool has settled below these relative speed (m/s) and acceleration (m/s^2).
     settle_v: f64,
     settle_a: f64,
-    /// The solver's tolerances (for the tool's rest while the robot cruises, `resting.rs`).
-    pub(crate) atol: f64,
-    pub(crate) rtol: f64,
-    pub(crate) ringing_enabled: bool,
-    /// Largest ringing amplitude for the closed form, fraction of the stop's depth.
-    pub(crate) ringing_max_amplitude: f64,
-    /// Error the closed form may leave in the robot impulse, N s: rtol times the momentum scale
-    /// `(m_t + m_p) v_max`.
-    pub(crate) ringing_impulse_tolerance: f64,
-    /// No ringing-tail check before this time.
-    pub(crate) next_ringing_check: f64,
-    /// Linearisations about the stop's equilibrium, by robot acceleration and holding stop.
-    pub(crate) ringing_cache: Vec<(f64, bool, Linearisation)>,
+    /// The tool on its stop: its equilibria, its rest while the robot cruises, its ringing.
+    stop: StopRinging,
     /// The run's tail, once it has ended early.
     pub tail: Option<Tail>,
 }
@@ -43,23 +32,10 @@ pub(crate) struct EarlyEnd {
 impl EarlyEnd {
     pub fn new(scene: &Scene) -> EarlyEnd {
         let atol = scene.solver.atol;
-        let m_p = if scene.object.enabled {
-            scene.object.mass
-        } else {
-            0.0
-        };
         EarlyEnd {
             settle_v: 100.0 * atol,
             settle_a: 1000.0 * atol,
-            atol,
-            rtol: scene.solver.rtol,
-            ringing_enabled: scene.solver.ringing_tail,
-            ringing_max_amplitude: crate::ringing_tail::max_amplitude(scene.solver.rtol),
-            ringing_impulse_tolerance: scene.solver.rtol
-                * (scene.tool.mass + m_p)
-                * scene.robot.approach_speed,
-            next_ringing_check: 0.0,
-            ringing_cache: Vec::new(),
+            stop: StopRinging::new(scene),
             tail: None,
         }
     }
@@ -82,7 +58,11 @@ impl EarlyEnd {
     /// What is left of the run from `(t, y)`, if it is known in closed form.
     fn tail_from(&mut self, m: &Model, peaks: &Peaks, t: f64, y: &[f64]) -> Option<TailKind> {
         let stopped = m.robot.stopped();
-        let ringing = |s: &mut Self| s.try_ringing_tail(m, peaks, t, y).map(TailKind::Ringing);
+        let ringing = |s: &mut Self| {
+            s.stop
+                .try_ringing_tail(m, peaks, t, y)
+                .map(TailKind::Ringing)
+        };
         if !((stopped || m.cruising_to_end()) && !m.regime.obj_contact) {
             return ringing(self);
         }
@@ -126,6 +106,7 @@ impl EarlyEnd {
                 .is_none()
                 .then_some(TailKind::Riding { stroke: None }),
             Some(_) => self
+                .stop
                 .rest_on_stop(m, t, y, &seg, &e)
                 .map(|s| TailKind::Riding { stroke: Some(s) }),
         };

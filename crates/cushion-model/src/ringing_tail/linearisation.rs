@@ -2,8 +2,8 @@
 //! it, from the model's own force law (Newton for the equilibrium, finite differences for the
 //! coefficients); kept per robot acceleration and holding stop by the early end.
 
+use super::StopRinging;
 use crate::model::{Model, MAX_STATES};
-use crate::observe::early_end::EarlyEnd;
 use crate::physics::Segment;
 use crate::ringing::Coefficients;
 
@@ -116,7 +116,7 @@ impl Model {
     }
 }
 
-impl EarlyEnd {
+impl StopRinging {
     /// The equilibrium on the holding stop and the oscillator's coefficients there, for a robot
     /// segment of acceleration `a_r`. They depend on `a_r` and on which stop holds the tool only
     /// (the force law does not depend on time), so they are computed once and kept; `s` is
