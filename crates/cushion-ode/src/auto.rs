@@ -28,6 +28,7 @@ use crate::norm::Weights;
 use crate::options::{Method, SolverOptions};
 use crate::rodas::Rodas;
 use crate::solution::Stats;
+pub use crate::stepper::Switch;
 use crate::stepper::{Attempt, StepFailure, Stepper};
 use crate::stiffness::{self, STABILITY_BOUNDARY, THRESHOLD};
 use crate::system::OdeSystem;
@@ -46,17 +47,6 @@ pub const TO_STIFF_BREAKS: u32 = 2;
 pub const TO_NONSTIFF_STEPS: u32 = 5;
 /// `h rho` below this fraction of DOPRI5's stability boundary counts as room for DOPRI5.
 pub const NONSTIFF_FRACTION: f64 = 0.5;
-
-/// A change of method between two steps.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Switch {
-    /// The method from the next step on.
-    pub to: Method,
-    /// When the run of steps that decided it began.
-    pub since: f64,
-    /// The largest next step the new method may take (infinite: no bound).
-    pub h_max: f64,
-}
 
 /// The composite method.
 pub struct AutoSwitch<const N: usize> {

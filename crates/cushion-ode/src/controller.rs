@@ -3,7 +3,7 @@
 //! ([`PiController`]), the predictive controller of Hairer's RODAS for the Rosenbrock method
 //! ([`PredictiveController`]); and Hairer's initial step selection ([`initial_step`]).
 
-use crate::stepper::StepFailure;
+use crate::failure::StepFailure;
 
 /// What the integration loop asks of a step-size controller.
 pub trait Controller {

@@ -12,7 +12,7 @@
 //! `e5 = h sum er_i k_i` (order 5) and `e3 = h (sum b_i k_i - bhh1 k1 - bhh2 k9 - bhh3 k12)`
 //! (order 3), `err = E5 / sqrt(n (E5 + 0.01 E3))` with `E5 = sum (e5/sk)^2`,
 //! `E3 = sum (e3/sk)^2`: algebraically the code's `|h| err * sqrt(1 / (n deno))` with its
-//! unscaled sums ([`crate::norm`]). The estimate behaves like `O(h^8)`.
+//! unscaled sums (`norm.rs`). The estimate behaves like `O(h^8)`.
 //!
 //! The coefficients are typed from the published digits (the code DOP853); the tests at the
 //! bottom check every order condition up to order 8 (the 200 rooted trees), those of the

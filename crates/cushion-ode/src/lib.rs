@@ -30,6 +30,7 @@ pub mod dense;
 pub mod dop853;
 pub mod dopri5;
 pub mod events;
+mod failure;
 pub mod jacobian;
 mod lu;
 mod norm;

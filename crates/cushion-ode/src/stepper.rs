@@ -4,7 +4,8 @@
 
 use crate::controller::{Controller, PiController};
 use crate::dense::DenseOutput;
-use crate::options::SolverOptions;
+pub use crate::failure::StepFailure;
+use crate::options::{Method, SolverOptions};
 use crate::solution::Stats;
 use crate::system::OdeSystem;
 use crate::tableau::{Tableau, MAX_STAGES};
@@ -27,24 +28,16 @@ pub struct Attempt<const N: usize> {
     pub err_low: Option<State<N>>,
 }
 
-/// Why an attempt produced no step. The loop retries it smaller (an adaptive method) and
-/// counts it as rejected.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum StepFailure {
-    /// A stage, the new state or the error estimate is not finite (a trial stage left the
-    /// domain of `f`). Found by the loop from the attempt's numbers.
-    NonFinite,
-    /// The iteration matrix (`I / (h gamma) - J` for a Rosenbrock method) is singular.
-    SingularMatrix,
-}
-
-impl std::fmt::Display for StepFailure {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            StepFailure::NonFinite => "a non-finite stage",
-            StepFailure::SingularMatrix => "a singular iteration matrix",
-        })
-    }
+/// A change of method between two steps (`auto.rs`), which the loop takes from
+/// [`Stepper::take_switch`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Switch {
+    /// The method from the next step on.
+    pub to: Method,
+    /// When the run of steps that decided it began.
+    pub since: f64,
+    /// The largest next step the new method may take (infinite: no bound).
+    pub h_max: f64,
 }
 
 /// A one-step method.
@@ -114,7 +107,7 @@ pub trait Stepper<const N: usize> {
     /// change of method from the next step on ([`crate::auto`]). The loop then takes the new
     /// method's controller.
     #[inline]
-    fn take_switch(&mut self) -> Option<crate::auto::Switch> {
+    fn take_switch(&mut self) -> Option<Switch> {
         None
     }
     /// Add the method's own counts (Jacobians, factorizations) to `stats`.
