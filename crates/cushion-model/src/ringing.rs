@@ -154,6 +154,12 @@ impl Ringing {
         self.mu * self.a0 / self.w0
     }
 
+    /// Energy of the linear oscillation of amplitude `a` (m) for a mass `m` (kg):
+    /// `m (w0 a)^2 / 2` (J).
+    pub fn energy(&self, m: f64, a: f64) -> f64 {
+        0.5 * m * (self.w0 * a).powi(2)
+    }
+
     /// Amplitude at `t` (m).
     pub fn amplitude(&self, t: f64) -> f64 {
         let tau = (t - self.t0).max(0.0);

@@ -321,8 +321,7 @@ impl StopRinging {
             .iter()
             .map(|pc| {
                 let r = &pc.ring;
-                let k1 = m.p.m_t * r.w0 * r.w0;
-                relative_error(r.a0 / pc.depth, r.orifice_damping_ratio()) * 0.5 * k1 * r.a0 * r.a0
+                relative_error(r.a0 / pc.depth, r.orifice_damping_ratio()) * r.energy(m.p.m_t, r.a0)
             })
             .sum();
         predicted <= ENERGY_ERROR * self.rtol * scale

@@ -21,7 +21,7 @@ use crate::observe::recorder::Recorder;
 use crate::observe::Observed;
 use crate::physics;
 use crate::summary::{RunStatus, SolverStats, Summary};
-use crate::tail::{self, TailKind};
+use crate::tail;
 use crate::trajectory::{EventLogEntry, Trajectory};
 use cushion_ode::{Output, SolverOptions, State, Stats, Status, Tolerance};
 
@@ -205,9 +205,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     let mut t = out.t;
     if let Some(tail) = &tail {
         y = tail.play(&mut model, &out.y, t_end);
-        if matches!(tail.kind, TailKind::Ringing(_)) {
-            tail::add_to_ledger(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
-        }
+        tail::add_to_ledger(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
         t = t_end;
     }
     let l = model.layout;

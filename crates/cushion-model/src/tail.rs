@@ -113,7 +113,8 @@ impl Tail {
             let t1 = tail.pieces.get(k + 1).map_or(t_end, |n| n.t0);
             let seg = *m.robot.segment_at(pc.t0);
             let half = std::f64::consts::PI / pc.ring.w0;
-            let energy = |t: f64| 0.5 * m.p.m_t * (pc.ring.w0 * pc.ring.amplitude(t)).powi(2);
+            let energy = |t: f64| pc.ring.energy(m.p.m_t, pc.ring.amplitude(t));
+            let energy_end = energy(t1);
             let mut ta = pc.t0;
             while ta < t1 {
                 let tb = (ta + half).min(t1);
@@ -137,7 +138,7 @@ impl Tail {
                     *dk += wk;
                 }
                 ta = tb;
-                let left = energy(ta) - energy(t1);
+                let left = energy(ta) - energy_end;
                 if ta < t1 && left < negligible {
                     // the rest, below `negligible`: the energy the ringing loses, shared as in
                     // the last half period
@@ -199,11 +200,12 @@ impl Tail {
     }
 }
 
-/// After an early end with a ringing tail: the robot's work during it (exact for the tail's
-/// motion) and what the model's force law dissipates along it (`Tail::dissipation`), each added
-/// to its ledger state, so that the residual checks the closed form as it checks the
-/// integration. Once what the ringing still has to lose is below rtol of the ledger's work,
-/// the quadrature stops and that rest is added as the ringing loses it.
+/// After an early end with a ringing tail (the other tails change nothing the ledger
+/// integrates): the robot's work during it (exact for the tail's motion) and what the model's
+/// force law dissipates along it (`Tail::dissipation`), each added to its ledger state, so that
+/// the residual checks the closed form as it checks the integration. Once what the ringing
+/// still has to lose is below rtol of the ledger's work, the quadrature stops and that rest is
+/// added as the ringing loses it.
 pub(crate) fn add_to_ledger(
     model: &Model,
     tail: &Tail,
@@ -213,7 +215,7 @@ pub(crate) fn add_to_ledger(
     y: &mut [f64],
 ) {
     let l = model.layout;
-    let Some(k_work) = l.work else {
+    let (TailKind::Ringing(_), Some(k_work)) = (&tail.kind, l.work) else {
         return;
     };
     y[k_work] += tail.robot_work(model, t_end);
