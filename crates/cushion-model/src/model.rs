@@ -32,6 +32,7 @@
 //! `model/jacobian.rs` its derivatives for the implicit method.
 
 mod events;
+mod dual;
 mod forces;
 mod jacobian;
 mod ode_system;
