@@ -58,8 +58,9 @@ pub(crate) struct Ringing {
     pub w0: f64,
     pub zeta: f64,
     wd: f64,
-    /// `atan2(lambda, w_d)`: the ripple's phase offset (rad).
+    /// `atan2(lambda, w_d)`: the ripple's phase offset (rad), and `sin 2 theta`, `cos 2 theta`.
     theta: f64,
+    sin_cos_2theta: (f64, f64),
     lambda: f64,
     mu: f64,
     nu: f64,
@@ -94,6 +95,7 @@ impl Ringing {
             zeta,
             wd: w0 * (1.0 - zeta * zeta).sqrt(),
             theta: 0.0,
+            sin_cos_2theta: (0.0, 1.0),
             lambda,
             mu: c.orifice_decay(),
             nu: 3.0 * alpha3 / (8.0 * w0) - 5.0 * alpha2 * alpha2 / (12.0 * w0.powi(3)),
@@ -103,6 +105,7 @@ impl Ringing {
             psi0: 0.0,
         };
         r.theta = r.lambda.atan2(r.wd);
+        r.sin_cos_2theta = (2.0 * r.theta).sin_cos();
         // Amplitude and phase from the state: the linear oscillator's values, then Newton on
         // `state(t0) = (u0, v0)` (the harmonic and mean terms are of order h2 a^2).
         let a_lin = u0.hypot((v0 + r.lambda * u0) / r.wd);
@@ -246,9 +249,11 @@ impl Ringing {
     /// plus the second harmonic and mean shift of the quadratic stiffness.
     fn shape(&self, a: f64, psi: f64) -> (f64, f64) {
         // ripple of amplitude and phase (variation of parameters, averaged to first order)
+        // the harmonics by double and difference angles: two sin_cos per call, not four, in
+        // the tail's hottest function (its ledger quadrature calls it at every node)
         let x = psi + self.theta;
         let (s2x, c2x) = (2.0 * x).sin_cos();
-        let (s4x, c4x) = (4.0 * x).sin_cos();
+        let (s4x, c4x) = (2.0 * s2x * c2x, (c2x - s2x) * (c2x + s2x));
         let tan = self.lambda / self.wd;
         let r = self.q_m * self.w0 / self.wd;
         let ripple_a = r
@@ -268,7 +273,9 @@ impl Ringing {
         // second harmonic and mean shift of the quadratic stiffness (Lindstedt)
         let rate = self.phase_rate(a);
         let da = -(self.lambda + self.mu * a) * a;
-        let (s2, c2) = (2.0 * psi).sin_cos();
+        // 2 psi = 2 x - 2 theta
+        let (st, ct) = self.sin_cos_2theta;
+        let (s2, c2) = (s2x * ct - c2x * st, c2x * ct + s2x * st);
         let harmonic = self.h2 * (c2 / 6.0 - 0.5);
         let u = aa * c1 + a * a * harmonic;
         let v = -aa * ((self.wd + self.nu * a * a) * s1 + self.lambda * c1)
