@@ -32,7 +32,6 @@
 //! `model/jacobian.rs` its derivatives for the implicit method.
 
 mod events;
-mod dual;
 mod forces;
 mod jacobian;
 mod ode_system;

@@ -9,27 +9,127 @@
 //! is that of the regime's branch. Guarded by
 //! `tests::the_jacobian_matches_finite_differences_in_every_regime`.
 
-use super::dual::D;
 use super::{Model, Regime};
 use crate::config::Module;
-use crate::physics::{self, Segment};
+use crate::physics;
 use cushion_ode::{Matrix, State};
+use std::ops::{Add, Div, Mul, Neg, Sub};
 
 /// The variables a gradient runs over: tool, liquid and object states, and time.
-pub(super) const XT: usize = 0;
-pub(super) const VT: usize = 1;
-pub(super) const PM: usize = 2;
-pub(super) const VX: usize = 3;
-pub(super) const XP: usize = 4;
-pub(super) const VP: usize = 5;
-pub(super) const T: usize = 6;
-pub(super) const VARS: usize = 7;
+const XT: usize = 0;
+const VT: usize = 1;
+const PM: usize = 2;
+const VX: usize = 3;
+const XP: usize = 4;
+const VP: usize = 5;
+const T: usize = 6;
+const VARS: usize = 7;
 
-/// Each variable's derivatives along the `W` directions of a pass of [`Model::terms`].
-pub(super) type Seeds<const W: usize> = [[f64; W]; VARS];
+/// A value with its gradient in `x_t, v_t, p_m, V_x, x_p, v_p, t`.
+#[derive(Clone, Copy, Debug, Default)]
+struct D {
+    v: f64,
+    g: [f64; VARS],
+}
+
+impl D {
+    fn constant(v: f64) -> D {
+        D { v, g: [0.0; VARS] }
+    }
+
+    /// The variable `i` at value `v`.
+    fn var(v: f64, i: usize) -> D {
+        let mut g = [0.0; VARS];
+        g[i] = 1.0;
+        D { v, g }
+    }
+
+    /// `f(self)` with `f' = slope` at `self.v`.
+    fn chain(self, v: f64, slope: f64) -> D {
+        D {
+            v,
+            g: self.g.map(|x| x * slope),
+        }
+    }
+
+    /// `d^1.5` for `d > 0`, else 0.
+    fn pos15(self) -> D {
+        if self.v > 0.0 {
+            let r = self.v.sqrt();
+            self.chain(self.v * r, 1.5 * r)
+        } else {
+            D::constant(0.0)
+        }
+    }
+}
+
+impl Add for D {
+    type Output = D;
+    fn add(self, o: D) -> D {
+        D {
+            v: self.v + o.v,
+            g: std::array::from_fn(|i| self.g[i] + o.g[i]),
+        }
+    }
+}
+
+impl Sub for D {
+    type Output = D;
+    fn sub(self, o: D) -> D {
+        self + (-o)
+    }
+}
+
+impl Neg for D {
+    type Output = D;
+    fn neg(self) -> D {
+        self * -1.0
+    }
+}
+
+// The product and quotient rules: clippy's suspicion of `+` in `Mul` does not apply.
+#[allow(clippy::suspicious_arithmetic_impl)]
+impl Mul for D {
+    type Output = D;
+    fn mul(self, o: D) -> D {
+        D {
+            v: self.v * o.v,
+            g: std::array::from_fn(|i| self.g[i] * o.v + self.v * o.g[i]),
+        }
+    }
+}
+
+impl Mul<f64> for D {
+    type Output = D;
+    fn mul(self, k: f64) -> D {
+        D {
+            v: self.v * k,
+            g: self.g.map(|x| x * k),
+        }
+    }
+}
+
+#[allow(clippy::suspicious_arithmetic_impl)]
+impl Div for D {
+    type Output = D;
+    fn div(self, o: D) -> D {
+        let q = self.v / o.v;
+        D {
+            v: q,
+            g: std::array::from_fn(|i| (self.g[i] - q * o.g[i]) / o.v),
+        }
+    }
+}
+
+impl Div<f64> for D {
+    type Output = D;
+    fn div(self, k: f64) -> D {
+        self * (1.0 / k)
+    }
+}
 
 /// Hunt–Crossley force `d^1.5 (k + chi dd)` (0 once released), as in `forces.rs`.
-fn contact_force<const W: usize>(k: f64, chi: f64, d: D<W>, dd: D<W>, released: bool) -> D<W> {
+fn contact_force(k: f64, chi: f64, d: D, dd: D, released: bool) -> D {
     if released {
         D::constant(0.0)
     } else {
@@ -38,24 +138,20 @@ fn contact_force<const W: usize>(k: f64, chi: f64, d: D<W>, dd: D<W>, released: 
 }
 
 /// The right-hand side's terms with their gradients.
-pub(super) struct Terms<const W: usize> {
-    pub v_t: D<W>,
-    pub a_t: D<W>,
-    v_p: D<W>,
-    a_p: D<W>,
-    p_work: D<W>,
-    p_orifice: D<W>,
-    p_friction: D<W>,
-    p_contact: D<W>,
-    p_plane: D<W>,
-    pub f_c: D<W>,
-    dp_m: D<W>,
-    flow: D<W>,
-    p_liquid: D<W>,
-    /// The module's total force on the tool `G` (the force on the robot is `-G`).
-    pub g: D<W>,
-    /// The gas pressure (0 without gas).
-    pub p1: D<W>,
+struct Terms {
+    v_t: D,
+    a_t: D,
+    v_p: D,
+    a_p: D,
+    p_work: D,
+    p_orifice: D,
+    p_friction: D,
+    p_contact: D,
+    p_plane: D,
+    f_c: D,
+    dp_m: D,
+    flow: D,
+    p_liquid: D,
 }
 
 impl Model {
@@ -66,8 +162,7 @@ impl Model {
         y: &State<N>,
         r: &Regime,
     ) -> (Matrix<N>, State<N>) {
-        let units: Seeds<VARS> = std::array::from_fn(|i| std::array::from_fn(|j| f64::from(i == j)));
-        let e = self.terms(t, y.as_slice(), self.robot.current(), r, &units);
+        let e = self.terms(t, y.as_slice(), r);
         let l = &self.layout;
         // the state index of each variable of a gradient
         let mut column = [None; VARS - 1];
@@ -85,7 +180,7 @@ impl Model {
         }
         let mut jac = Matrix::<N>::zeros();
         let mut dfdt = State::<N>::zeros();
-        let mut row = |k: usize, d: &D<VARS>| {
+        let mut row = |k: usize, d: &D| {
             for (var, c) in column.iter().enumerate() {
                 if let Some(c) = c {
                     jac[(k, *c)] = d.g[var];
@@ -123,20 +218,14 @@ impl Model {
         (jac, dfdt)
     }
 
-    /// `forces.rs`'s `eval_inline` at `(t, y)` in robot segment `seg` and regime `r`, each
-    /// term with its derivatives along the directions `seeds` gives each variable.
-    pub(super) fn terms<const W: usize>(
-        &self,
-        t: f64,
-        y: &[f64],
-        seg: &Segment,
-        r: &Regime,
-        seeds: &Seeds<W>,
-    ) -> Terms<W> {
+    /// `forces.rs`'s `eval_inline`, each term with its gradient.
+    fn terms(&self, t: f64, y: &[f64], r: &Regime) -> Terms {
         let p = &self.p;
-        let (x_r, v_r, a_r) = seg.at(t);
-        let xr = D::var(x_r, seeds[T].map(|s| s * v_r));
-        let vr = D::var(v_r, seeds[T].map(|s| s * a_r));
+        let (x_r, v_r, a_r) = self.robot.current().at(t);
+        let mut xr = D::constant(x_r);
+        xr.g[T] = v_r;
+        let mut vr = D::constant(v_r);
+        vr.g[T] = a_r;
         let ar = D::constant(a_r);
         let zero = D::constant(0.0);
         let mut e = Terms {
@@ -153,14 +242,12 @@ impl Model {
             dp_m: zero,
             flow: zero,
             p_liquid: zero,
-            g: zero,
-            p1: zero,
         };
         let (mut x_t, mut v_t) = (xr, vr);
         let (mut f_module, mut f_stop, mut sd) = (zero, zero, zero);
         if let Some(i) = self.layout.tool {
-            x_t = D::var(y[i], seeds[XT]);
-            v_t = D::var(y[i + 1], seeds[VT]);
+            x_t = D::var(y[i], XT);
+            v_t = D::var(y[i + 1], VT);
             let s = xr - x_t;
             sd = vr - v_t;
             let (mut f_fwd, mut f_back) = (zero, zero);
@@ -178,11 +265,10 @@ impl Model {
             match p.module {
                 Module::Hydraulic if self.layout.liquid.is_some() => {
                     let q = self.layout.liquid.unwrap_or(0);
-                    let p_m = D::var(y[q], seeds[PM]);
-                    let v_x = D::var(y[q + 1], seeds[VX]);
+                    let p_m = D::var(y[q], PM);
+                    let v_x = D::var(y[q + 1], VX);
                     let p1 = self.gas.exact(v_x.v);
                     let p1 = v_x.chain(p1, self.gas.slope(v_x.v, p1));
-                    e.p1 = p1;
                     let dp = p_m - p1;
                     let k = p.a_o * (2.0 / (p.c0 * p.rho)).sqrt();
                     let m = dp.v * dp.v + p.p_transition * p.p_transition;
@@ -202,7 +288,6 @@ impl Model {
                 Module::Hydraulic => {
                     let p1 = self.gas.exact(s.v);
                     let p1 = s.chain(p1, self.gas.slope(s.v, p1));
-                    e.p1 = p1;
                     let ratio = p.a_p / p.a_o;
                     let c = 0.5 * p.c0 * p.rho * ratio * ratio;
                     let mut dp = sd.chain(c * sd.v * sd.v.abs(), 2.0 * c * sd.v.abs());
@@ -226,8 +311,8 @@ impl Model {
         }
         e.v_t = v_t;
         if let Some(j) = self.layout.object {
-            let x_p = D::var(y[j], seeds[XP]);
-            let v_p = D::var(y[j + 1], seeds[VP]);
+            let x_p = D::var(y[j], XP);
+            let v_p = D::var(y[j + 1], VP);
             e.v_p = v_p;
             if r.obj_contact {
                 let (d, dd) = (x_t - x_p, v_t - v_p);
@@ -250,7 +335,6 @@ impl Model {
             e.p_friction = f_f * sd;
         }
         e.p_work = g * vr;
-        e.g = g;
         if self.layout.object.is_some() {
             if p.mu_n > 0.0 {
                 if r.obj_stuck {
