@@ -44,10 +44,9 @@
 //!   (`-(m_t dv_t + m_p dv_p)`; with plane friction a quadrature of `F_c` replaces `m_p dv_p`).
 //! - **Peaks** (`|F_r|`, `F_c`, stroke) are sampled at each step's end, and at three interior
 //!   points of its dense output where a new peak is possible (an end value above half the
-//!   peak so far, the stroke turning, the steps right after an event); they are refined once
-//!   per run by Brent's search inside the step that holds the largest sample, and the next one
-//!   when that sample is the step's end (`peaks.rs`). `max_gas_pressure = p1(max_stroke)`
-//!   (monotone in `s`).
+//!   peak so far, the stroke turning, the steps right after an event); every local top of the
+//!   samples near the largest value so far is located at once by Brent's search on the dense
+//!   output around it (`peaks.rs`). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
 //!   the tolerance (tested). SPEC names the standing robot; the same end is taken while the robot
 //!   cruises on with no brake before `t_end` (a preload too strong for the sensor to switch, or

@@ -1,25 +1,22 @@
-//! Peaks inside steps: the step that holds the largest sample of a quantity (`|F_r|`, `F_c`,
-//! the stroke) keeps its dense output, and the peak is located in it once, at the end of the
-//! run, by Brent's search.
+//! Peaks found as the samples come: each quantity (`|F_r|`, `F_c`, the stroke) is sampled at
+//! every step's end and at three points inside where a new peak is possible
+//! (`observe/peak_sampler.rs`), and every local top of its samples that comes near the largest
+//! value so far is located at once, by Brent's search on the dense output around it: the
+//! two sample intervals on either side of the top sample.
 //!
-//! The physics is sampled at every step's end, and at three points inside where a new peak is
-//! possible (`observe/peak_sampler.rs`). (Where `F_r` jumps, at a step's start, that first
-//! value is kept apart, `fr_after_jump`: a value at a jump needs no search.) When the
-//! largest sample is a step's end, the peak may lie on either side of it: just before it in
-//! that step, or just after it in the next one. The next step is then kept as well and both
-//! sides are searched (`tests/peaks.rs::peaks_just_after_a_step_end_are_found`).
-//!
-//! Two peaks of nearly the same height in different places (a bistable module's back-stop
-//! impact and a later one, 0.04 % apart) may be sampled in the wrong order: the one with the
-//! larger sample need not hold the larger peak, least of all where the steps are long. The
-//! steps with the largest samples of up to three other peaks within [`rival_window`] of the
-//! best are kept as rivals and refined too (a peak is another one when the step ends have
-//! fallen more than [`RIVAL`] below the previous one's largest sample since it). A step whose
-//! largest sample is overtaken after the quantity fell by less than that (one peak with two
-//! tops and a shallow dip) is kept as a rival as well: its top may be the higher one.
+//! That is one rule for every case. A top inside a step is searched on that step's own dense
+//! output, exact for any method. A top at a step's end is confirmed only by the next step's
+//! first sample, and the peak may lie on either side of it: the step before is then kept (its
+//! dense output, [`KeptStep`]) and both sides are searched
+//! (`tests/peaks.rs::peaks_just_after_a_step_end_are_found`). Several tops of nearly the same
+//! height (a bistable module's back-stop impact and a later one, 0.04 % apart; one peak with
+//! two tops and a shallow dip) are each searched, so the one with the larger sample need not
+//! hold the larger peak. Where a quantity jumps (`F_r` at a robot kink under a rigid tool) the
+//! value after the jump is exact where it is, and is offered as found ([`PeakTracker::found`]).
 
 use crate::model::{Regime, MAX_STATES};
 use crate::physics::Segment;
+use cushion_ode::DenseOutput;
 
 /// Samples of the physics per step (besides its start).
 pub(crate) const K: usize = 4;
@@ -28,272 +25,184 @@ pub(crate) const K: usize = 4;
 /// layout): the ledger's quadratures after them do not enter any force.
 pub(crate) const MAX_DYNAMIC: usize = 6;
 
-/// A step as five equally spaced nodes of its dense output (a polynomial of degree 4 in `t`,
-/// so the nodes reproduce it exactly), with the robot segment and regime it ran in. Only the
-/// states the physics reads are kept.
+/// A step kept while the sample at its end may be a top: its dense output (the states the
+/// physics reads, [`DenseOutput::leading`]), with the robot segment and regime it ran in.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct PeakStep {
-    pub ts: [f64; K + 1],
-    pub nodes: [[f64; MAX_DYNAMIC]; K + 1],
+pub(crate) struct KeptStep {
+    pub dense: DenseOutput<MAX_DYNAMIC>,
     pub seg: Segment,
     pub regime: Regime,
-    /// Index of the largest sample.
-    pub k: usize,
 }
 
-impl PeakStep {
-    /// The state at `t` by Lagrange interpolation through the nodes (exact for the degree-4
-    /// dense output of DOPRI5 and for the cubic Hermite of the fixed-step methods); the
-    /// quadratures after the kept states are zero.
+impl KeptStep {
+    /// The state at `t` on the step's dense output; the quadratures after the kept states are
+    /// zero.
     pub fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
         let mut y = [0.0; MAX_STATES];
-        for j in 0..=K {
-            let mut l = 1.0;
-            for m in 0..=K {
-                if m != j {
-                    l *= (t - self.ts[m]) / (self.ts[j] - self.ts[m]);
-                }
-            }
-            for (yi, ni) in y.iter_mut().zip(self.nodes[j].iter()) {
-                *yi += l * ni;
-            }
-        }
+        y[..MAX_DYNAMIC].copy_from_slice(self.dense.eval(t).as_slice());
         y
     }
 }
 
-/// By how much (relative) the step ends must fall below a peak's largest sample for a later
-/// rise to be another peak.
-pub(crate) const RIVAL: f64 = 1e-2;
-
-/// Relative distance below the largest sample within which another peak is kept and refined as
-/// well, at the tolerance `rtol`: `RIVAL (rtol / 1e-6)^0.4` within `[RIVAL, 0.2]`. A sample
-/// lies below its peak by about the square of the step (a 5th-order method's step grows like
-/// `rtol^(1/5)`), and at loose tolerances by more than `RIVAL`: there the peak whose sample
-/// happens to lie lowest may be the largest
+/// A sample's relative distance below its top, which sets how near the largest value so far a
+/// top must come to be searched: at the tolerance `rtol`, `0.01 (rtol / 1e-6)^0.4` within
+/// `[0.01, 0.2]`. A sample lies below its peak by about the square of the step (a 5th-order
+/// method's step grows like `rtol^(1/5)`), and at loose tolerances by more than 1 %: there the
+/// peak whose sample happens to lie lowest may be the largest
 /// (`tests::a_peak_sampled_low_among_several_near_ones_is_still_found`). At rtol 1e-6 and
-/// tighter the window is `RIVAL`, which keeps the extra refinements rare.
-pub(crate) fn rival_window(rtol: f64) -> f64 {
-    (RIVAL * (rtol / 1e-6).powf(0.4)).clamp(RIVAL, 0.2)
+/// tighter the window is 1 %, which keeps the searches rare.
+pub(crate) fn top_window(rtol: f64) -> f64 {
+    const NARROWEST: f64 = 1e-2;
+    (NARROWEST * (rtol / 1e-6).powf(0.4)).clamp(NARROWEST, 0.2)
 }
 
-/// `v` lowered by the fraction `by` of its size: the edge of a window (or a dip) below a sample.
-#[inline(always)]
-fn below(v: f64, by: f64) -> f64 {
-    v - by * v.abs()
-}
-
-/// Other peaks kept besides the best (the largest samples among those in the window).
-const RIVALS: usize = 3;
-
-/// Two refined peaks within this relative distance are the same height (to rounding: the
+/// Two located values within this relative distance are the same height (to rounding: the
 /// search finds a smooth peak to ~1e-14), and the earlier one is the peak. A bistable spring's
 /// two extreme forces are equal and opposite, so a tool that crosses both slowly meets the
 /// same largest `|F_r|` twice; without a rule, rounding would choose the sign and the time
 /// (`tests::of_two_peaks_of_the_same_height_the_earlier_is_the_peak`).
 pub(crate) const TIE: f64 = 1e-12;
 
-/// Another peak's step (and the one after it, if kept) with its largest sample.
-type Rival = (PeakStep, Option<PeakStep>, f64);
+/// A top to search: the sample `(t, v)`, which rose from the sample at `lo` and fell to the
+/// one at `hi` (at the run's end, `hi = t`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bracket {
+    pub lo: f64,
+    pub t: f64,
+    pub v: f64,
+    pub hi: f64,
+}
 
-/// Where one quantity's peak is: the step with its largest sample and, when that sample is the
-/// step's end, the step after it; and the steps with the largest samples of up to [`RIVALS`]
-/// other peaks within [`rival_window`] of it.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct PeakCandidate {
-    pub at: Option<PeakStep>,
-    pub after: Option<PeakStep>,
-    wants_next: bool,
-    /// The largest sample (the one `at` holds), or the value at the start.
-    best: f64,
-    /// [`rival_window`] at the run's tolerance.
+/// A located value: its time, its value, and what the caller reports for it (the signed force
+/// where the value is `|F_r|`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Peak {
+    pub t: f64,
+    pub value: f64,
+    pub reported: f64,
+}
+
+/// One quantity's peak, found as its samples arrive.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PeakTracker {
+    /// The largest value located so far (the value at the start until a top beats it).
+    pub peak: Peak,
+    /// The largest value seen, sample or located: a top is searched if its sample comes
+    /// within `window` of it.
+    known: f64,
     window: f64,
-    /// A step has ended more than `RIVAL` below `best` since `at`.
-    dipped: bool,
-    /// A step has ended below `best` since `at` (the quantity turned there, by any amount).
-    fell: bool,
-    /// At most [`RIVALS`]; on the heap, allocated only when a rival comes up, so that the
-    /// model, moved whole a few times per run, stays small.
-    rivals: Vec<Option<Rival>>,
-    /// The slot of the rival whose peak is still rising or at its top (no step has ended more
-    /// than `RIVAL` below it since): a larger sample of that peak replaces it there.
-    rising: Option<usize>,
+    /// The last sample, the time of the one before it, and whether it rose from that one.
+    last: (f64, f64),
+    before: f64,
+    rising: bool,
 }
 
-impl PeakCandidate {
-    /// No step kept yet; `best` is the value at the start, which a peak must exceed; rivals
-    /// within `window` (relative, [`rival_window`]) are kept.
-    pub fn starting_at(best: f64, window: f64) -> PeakCandidate {
-        PeakCandidate {
-            best,
+impl PeakTracker {
+    /// The value at the start, `start` (exact: a peak must exceed it); tops within `window`
+    /// (relative, [`top_window`]) of the largest value are searched.
+    pub fn starting_at(start: Peak, window: f64) -> PeakTracker {
+        PeakTracker {
+            peak: start,
+            known: start.value,
             window,
-            ..PeakCandidate::default()
+            last: (start.t, start.value),
+            before: start.t,
+            rising: false,
         }
     }
 
-    /// The slot for a rival whose largest sample is `value`: a free one, a new one while fewer
-    /// than [`RIVALS`] are kept, or the smallest rival's if `value` is larger; `None` if every
-    /// rival kept is at least as large.
-    fn slot_for(&mut self, value: f64) -> Option<usize> {
-        if let Some(free) = self.rivals.iter().position(Option::is_none) {
-            return Some(free);
-        }
-        if self.rivals.len() < RIVALS {
-            self.rivals.push(None);
-            return Some(self.rivals.len() - 1);
-        }
-        let (i, smallest) = self
-            .rivals
-            .iter()
-            .enumerate()
-            .filter_map(|(i, r)| r.as_ref().map(|r| (i, r.2)))
-            .min_by(|a, b| a.1.total_cmp(&b.1))?;
-        (smallest < value).then_some(i)
-    }
-
-    /// A new largest sample `value`, in `step` at node `step.k`. The step that held the
-    /// previous one becomes a rival if the quantity fell after it (another peak, or another top
-    /// of this one), near enough.
-    // runs on every new largest sample: as a call, moving the step in and out, it costs about
-    // 1 % of a run's instructions (`bash bench/instructions.sh`)
+    /// Whether a sample `v` is near enough the largest value seen for its top to be searched.
     #[inline(always)]
-    fn set(&mut self, step: PeakStep, value: f64) {
-        if let Some(i) = self.rising.take() {
-            // the rising rival's peak is this one: `at` takes it over
-            self.rivals[i] = None;
-        }
-        let window = below(value, self.window);
-        // the old step is kept if its quantity turned after it (`fell`; a dip of `RIVAL` is a
-        // fall too), even by less than `RIVAL`: then the two are one peak with two tops and a
-        // shallow dip, and the larger sample need not hold the larger top (a long step's
-        // samples can miss the first top; `tests::a_higher_top_before_a_shallow_dip_is_found`);
-        // while it rises, never
-        if self.fell && self.best >= window {
-            if let Some(old) = self.at.take() {
-                if let Some(i) = self.slot_for(self.best) {
-                    self.rivals[i] = Some((old, self.after.take(), self.best));
-                }
-            }
-        }
-        for r in self.rivals.iter_mut() {
-            if r.as_ref().is_some_and(|r| r.2 < window) {
-                *r = None;
-            }
-        }
-        self.wants_next = step.k == K;
-        self.at = Some(step);
-        self.after = None;
-        self.best = value;
-        self.dipped = false;
-        self.fell = false;
+    fn near(&self, v: f64) -> bool {
+        v >= self.known - self.window * self.known.abs()
     }
 
-    /// A step whose largest sample `value` is not a new largest one: kept as a rival if it
-    /// belongs to another peak and comes near the best (`step` builds it).
-    fn offer(&mut self, value: f64, step: impl FnOnce() -> PeakStep) {
-        if !(self.at.is_some() && self.dipped && value >= below(self.best, self.window)) {
-            return;
-        }
-        match self.rising {
-            // the same peak as the rival still rising: keep its larger sample
-            Some(i) => {
-                if self.rivals[i].as_ref().is_none_or(|r| r.2 < value) {
-                    self.rivals[i] = Some((step(), None, value));
-                }
-            }
-            None => {
-                if let Some(i) = self.slot_for(value) {
-                    self.rivals[i] = Some((step(), None, value));
-                    self.rising = Some(i);
-                }
-            }
-        }
+    /// The next sample, `v` at `t`. Returns the top it confirms (the last sample, if it rose
+    /// to there and `v` is not above it) when that comes near the largest value seen.
+    #[inline]
+    pub fn sample(&mut self, t: f64, v: f64) -> Option<Bracket> {
+        let (t_last, v_last) = self.last;
+        // a sample equal to the last confirms it as well: two samples either side of a top,
+        // equally far from it, are the same value and hold it between them
+        // (`tests::a_peak_sampled_low_among_several_near_ones_is_still_found`), and a quantity
+        // that overshoots into a plateau (a contact force as the object sticks) has its top
+        // just before the plateau's first sample
+        // (`tests::a_top_before_a_plateau_is_found`)
+        let top = (self.rising && v <= v_last && self.near(v_last)).then_some(Bracket {
+            lo: self.before,
+            t: t_last,
+            v: v_last,
+            hi: t,
+        });
+        self.known = self.known.max(v);
+        self.rising = v > v_last;
+        self.before = t_last;
+        self.last = (t, v);
+        top
     }
 
-    /// One step: its largest sample `value`, in the step that `step` builds, and the sample
-    /// `end` at its end. Returns whether `value` is a new largest sample.
-    pub fn observe(&mut self, value: f64, end: f64, step: impl FnOnce() -> PeakStep) -> bool {
-        let is_new = value > self.best;
-        if is_new {
-            self.set(step(), value);
-        } else {
-            self.offer(value, step);
-        }
-        self.note_end(end);
-        is_new
+    /// Whether the last sample may still prove a top to search (it rose, near the largest
+    /// value seen): the step it ends must be kept until the next sample comes.
+    #[inline]
+    pub fn may_top(&self) -> bool {
+        self.rising && self.near(self.last.1)
     }
 
-    /// The sample at a step's end (after `set` or `offer` for that step).
-    fn note_end(&mut self, value: f64) {
-        if value < self.best {
-            self.fell = true;
-        }
-        if value < below(self.best, RIVAL) {
-            self.dipped = true;
-        }
-        if let Some(i) = self.rising {
-            let top = self.rivals[i].as_ref().map_or(f64::INFINITY, |r| r.2);
-            if value < below(top, RIVAL) {
-                self.rising = None;
-            }
-        }
+    /// At the run's end: the last sample as a top, if it may be one (it rose to the end).
+    pub fn open_top(&self) -> Option<Bracket> {
+        self.may_top().then_some(Bracket {
+            lo: self.before,
+            t: self.last.0,
+            v: self.last.1,
+            hi: self.last.0,
+        })
     }
 
-    /// Whether the step that follows should be kept (see [`Self::follow`]).
-    pub fn wants_next(&self) -> bool {
-        self.wants_next
-    }
-
-    /// The step right after the one holding the largest sample at its end.
-    pub fn follow(&mut self, next: PeakStep) {
-        if self.wants_next {
-            self.after = Some(next);
-            self.wants_next = false;
+    /// A located value: a searched top, or an exact value (where the quantity jumps). It is
+    /// the peak if it is larger, or the same height ([`TIE`]) and earlier.
+    pub fn found(&mut self, p: Peak) {
+        let best = self.peak.value;
+        let tie = (p.value - best).abs() <= TIE * p.value.abs().max(best.abs());
+        if (tie && p.t < self.peak.t) || (!tie && p.value > best) {
+            self.peak = p;
         }
-    }
-
-    /// The largest value of `f(step, t)` near the largest sample, whose value is `f_best`:
-    /// within the two sample intervals around it, and in the first sample interval of the next
-    /// step when the sample is a step's end; of the best and the rival peaks the largest, or the
-    /// earliest of those the same height ([`TIE`]). Returns `(t, value, the step that holds
-    /// it)`; `None` without a candidate.
-    pub fn locate(
-        &self,
-        f: impl Fn(&PeakStep, f64) -> f64,
-        f_best: f64,
-    ) -> Option<(f64, f64, &PeakStep)> {
-        let c = self.at.as_ref()?;
-        let mut best = locate_in(c, self.after.as_ref(), &f, f_best);
-        for (r, after, value) in self.rivals.iter().flatten() {
-            let other = locate_in(r, after.as_ref(), &f, *value);
-            let tie = (other.1 - best.1).abs() <= TIE * other.1.abs().max(best.1.abs());
-            if (tie && other.0 < best.0) || (!tie && other.1 > best.1) {
-                best = other;
-            }
-        }
-        Some(best)
+        self.known = self.known.max(p.value);
     }
 }
 
-/// The largest value of `f` around the sample `f_best` at node `c.k` of step `c`, and in the
-/// first sample interval of the step `after` it.
-fn locate_in<'a>(
-    c: &'a PeakStep,
-    after: Option<&'a PeakStep>,
-    f: &impl Fn(&PeakStep, f64) -> f64,
-    f_best: f64,
-) -> (f64, f64, &'a PeakStep) {
-    let (lo, hi) = (c.ts[c.k.saturating_sub(1)], c.ts[(c.k + 1).min(K)]);
-    let (t, v) = brent_max(|t| f(c, t), lo, hi, (c.ts[c.k], f_best));
-    let mut best = (t, v, c);
-    if let Some(n) = after {
-        // from the shared end point, a bracket end here
-        let (t, v) = brent_max(|t| f(n, t), n.ts[0], n.ts[1], (n.ts[0], f(n, n.ts[0])));
-        if v > best.1 {
-            best = (t, v, n);
-        }
+/// Which side of a step's start a located point lies on: a quantity may jump there (`F_r`
+/// where the robot's acceleration jumps under a rigid tool), so a point at the start itself
+/// must be evaluated on the side it was found on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Side {
+    Before,
+    After,
+}
+
+/// Search the top `b` whose bracket may straddle `split` (a step's start): on `before` left of
+/// it and on `after` right of it, each side from its own known point. Returns the largest
+/// point, `(t, value)`, and the side it was found on.
+pub(crate) fn search(
+    b: Bracket,
+    split: f64,
+    before: impl Fn(f64) -> f64,
+    after: impl Fn(f64) -> f64,
+) -> (f64, f64, Side) {
+    if b.lo >= split {
+        let (t, v) = brent_max(after, b.lo, b.hi, (b.t, b.v));
+        return (t, v, Side::After);
     }
-    best
+    // the top is the shared point, or left of it (at the run's end)
+    let left = brent_max(before, b.lo, b.t, (b.t, b.v));
+    if b.hi <= split {
+        return (left.0, left.1, Side::Before);
+    }
+    let right = brent_max(&after, split, b.hi, (split, after(split)));
+    if right.1 > left.1 {
+        (right.0, right.1, Side::After)
+    } else {
+        (left.0, left.1, Side::Before)
+    }
 }
 
 /// Largest value of `f` on `[lo, hi]` by Brent's method (golden-section steps, parabolic

@@ -183,7 +183,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         early_end,
         recorder,
     } = system;
-    peaks.refine(&model);
+    peaks.finish(&model);
     let peaks = peaks.peaks;
     let status = match out.status {
         Status::Success | Status::StoppedByEvent => RunStatus::Ok,

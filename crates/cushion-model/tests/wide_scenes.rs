@@ -114,8 +114,7 @@ fn wide_trajectories_agree_with_their_summaries() {
     // below 10 mN (a tool riding along, F_r of the integration error's size) and runs flagged
     // stiff (whose dense output swings between step ends) are left out. Measured with
     // `wide_trajectories`: no run beyond 1 rtol in 20,000 scenes of the example's draw, at most
-    // 0.36 rtol in 3,000 of this one (keeping a single rival peak within 1 % instead of up to
-    // three in a window leaves a contact force 31 rtol low).
+    // 0.36 rtol in 3,000 of this one.
     let mut u = Uniform::new(0x2545F4914F6CDD1D);
     let mut compared = 0;
     for i in 0..300 {

@@ -31,55 +31,88 @@ fn brent_keeps_the_start_when_nothing_is_larger() {
     assert_eq!((t, v), (0.5, 1.0));
 }
 
-#[test]
-fn lagrange_nodes_reproduce_a_quartic() {
-    let q = |t: f64| 1.0 + t - 2.0 * t * t + 0.5 * t.powi(3) - 0.25 * t.powi(4);
-    let (step, _, _) = step_of(&q, 0.1, 0.2);
-    for t in [0.1, 0.13, 0.2, 0.29] {
-        assert!((step.state_at(t)[0] - q(t)).abs() < 1e-14);
-    }
-}
-
-/// A step of `f` over `[t0, t0 + h]`: its five nodes, its largest sample marked.
-fn step_of(f: &impl Fn(f64) -> f64, t0: f64, h: f64) -> (PeakStep, f64, f64) {
-    let ts: [f64; K + 1] = std::array::from_fn(|k| t0 + h * k as f64 / K as f64);
-    let mut nodes = [[0.0; MAX_DYNAMIC]; K + 1];
-    let mut k_best = 0;
-    for k in 0..=K {
-        nodes[k][0] = f(ts[k]);
-        if nodes[k][0] > nodes[k_best][0] {
-            k_best = k;
-        }
-    }
-    let step = PeakStep {
-        ts,
-        nodes,
-        seg: Segment {
-            t0: 0.0,
-            x0: 0.0,
-            v0: 0.0,
-            a: 0.0,
-            phase: crate::physics::Phase::Stopped,
+/// Sample `f` four times per step of 0.01 over `[0, 1]`, searching each top the tracker asks
+/// for on `f` itself (split at the step's start, as the sampler does), and the open top at
+/// the end: the peak, `(t, value)`, and how many tops were searched.
+fn peak_of(f: impl Fn(f64) -> f64) -> (f64, f64, usize) {
+    let mut p = PeakTracker::starting_at(
+        Peak {
+            t: 0.0,
+            value: f(0.0),
+            reported: f(0.0),
         },
-        regime: Regime::default(),
-        k: k_best,
+        top_window(1e-6),
+    );
+    let mut searched = 0;
+    let mut locate = |p: &mut PeakTracker, b: Bracket, split: f64| {
+        searched += 1;
+        let (t, value, _) = search(b, split, &f, &f);
+        p.found(Peak {
+            t,
+            value,
+            reported: value,
+        });
     };
-    (step, nodes[k_best][0], nodes[K][0])
-}
-
-/// Observe `f` step by step over `[0, 1]` and locate its peak: `(t, value)`.
-fn peak_of(f: impl Fn(f64) -> f64) -> (f64, f64) {
-    let mut c = PeakCandidate::starting_at(f(0.0), RIVAL);
     let h = 0.01;
     for i in 0..100 {
-        let (step, best, end) = step_of(&f, i as f64 * h, h);
-        c.observe(best, end, || step);
-        if c.wants_next() {
-            c.follow(step_of(&f, (i + 1) as f64 * h, h).0);
+        let t0 = i as f64 * h;
+        for k in 1..=K {
+            let t = t0 + h * k as f64 / K as f64;
+            if let Some(b) = p.sample(t, f(t)) {
+                locate(&mut p, b, t0);
+            }
         }
     }
-    let (t, v, _) = c.locate(|c, t| c.state_at(t)[0], c.best).unwrap();
-    (t, v)
+    if let Some(b) = p.open_top() {
+        locate(&mut p, b, f64::INFINITY);
+    }
+    (p.peak.t, p.peak.value, searched)
+}
+
+#[test]
+fn a_top_at_a_step_end_is_searched_on_both_sides() {
+    // tops 1e-4 before and 1e-4 after the step end at 0.5 (a sample), each side's in its step
+    for tp in [0.4999, 0.5001] {
+        let (t, v, searched) = peak_of(|t| 2.0 - 300.0 * (t - tp) * (t - tp));
+        assert!((t - tp).abs() < 1e-7, "{t} for {tp}");
+        assert!((v - 2.0).abs() < 1e-13, "{v}");
+        assert_eq!(searched, 1);
+    }
+}
+
+#[test]
+fn a_quantity_rising_to_the_end_peaks_at_the_end() {
+    let (t, v, _) = peak_of(|t| t * t + 0.5);
+    assert_eq!((t, v), (1.0, 1.5));
+}
+
+#[test]
+fn a_top_before_a_plateau_is_found() {
+    // a rise that overshoots to 1.001 at 0.5012 and settles at 0.502 on 1.0 for good: the
+    // samples from 0.5025 on are all 1.0, the largest sample, and the top lies before them
+    let f = |t: f64| {
+        if t < 0.502 {
+            1.001 - 1.0e3 * (t - 0.5012) * (t - 0.5012)
+        } else {
+            1.0
+        }
+    };
+    assert!(f(0.5) < 1.0);
+    let (t, v, searched) = peak_of(f);
+    assert!((t - 0.5012).abs() < 1e-7, "{t}");
+    assert!((v - 1.001).abs() < 1e-13, "{v}");
+    assert_eq!(searched, 1);
+}
+
+#[test]
+fn tops_far_below_the_largest_value_are_not_searched() {
+    // a decaying ringing: the first top at 0.05 (height 1) is searched; the later ones are
+    // more than the 1 % window below it
+    let (t, v, searched) = peak_of(|t| (-3.0 * t).exp() * (10.0 * std::f64::consts::PI * t).sin());
+    assert!(searched <= 2, "{searched} searches");
+    let tp = (10.0 * std::f64::consts::PI / 3.0).atan() / (10.0 * std::f64::consts::PI);
+    let top = (-3.0 * tp).exp() * (10.0 * std::f64::consts::PI * tp).sin();
+    assert!((t - tp).abs() < 1e-7 && (v - top).abs() < 1e-14, "{t} {v}");
 }
 
 #[test]
@@ -89,21 +122,21 @@ fn of_two_peaks_of_the_same_height_the_earlier_is_the_peak() {
     // though the later one is the larger and is found so (without the rule it would win)
     let bump = |t: f64, tp: f64| 1.0 - 40.0 * (t - tp) * (t - tp);
     let f = |t: f64| bump(t, 0.2033).max(bump(t, 0.6913) + 2e-13).max(0.0);
-    let (t, v) = peak_of(f);
+    let (t, v, _) = peak_of(f);
     assert!((t - 0.2033).abs() < 1e-6, "{t}");
     assert!((v - 1.0).abs() < 1e-14, "{v}");
     // a later peak higher by more than the tie's width is the peak
     let g = |t: f64| bump(t, 0.2033).max(bump(t, 0.6913) + 1e-9).max(0.0);
-    let (t, _) = peak_of(g);
+    let (t, _, _) = peak_of(g);
     assert!((t - 0.6913).abs() < 1e-6, "{t}");
 }
 
 #[test]
 fn a_peak_sampled_low_among_several_near_ones_is_still_found() {
     // Three sharp peaks: at 0.20125 (height 1.003, its nearest node 1.25e-3 away, so its
-    // largest sample is 0.99675), at 0.4 (1.0, on a node) and at 0.601 (1.001, sample
-    // 0.997). The middle one holds the largest sample; the first holds the peak, with the
-    // smallest sample of the three: one rival slot would have kept the last one only.
+    // two samples, at 0.2 and 0.2025, are both 0.99675), at 0.4 (1.0, on a node) and at 0.601
+    // (1.001, sample 0.997). The middle one holds the largest sample; the first holds the
+    // peak, with the smallest sample of the three, and its top lies between two equal ones.
     let bump = |t: f64, tp: f64, top: f64| top - 4000.0 * (t - tp) * (t - tp);
     let f = |t: f64| {
         bump(t, 0.20125, 1.003)
@@ -111,17 +144,17 @@ fn a_peak_sampled_low_among_several_near_ones_is_still_found() {
             .max(bump(t, 0.601, 1.001))
             .max(0.0)
     };
-    let (t, v) = peak_of(f);
+    let (t, v, _) = peak_of(f);
     assert!((t - 0.20125).abs() < 1e-6, "{t}");
     assert!((v - 1.003).abs() < 1e-12, "{v}");
 }
 
 #[test]
 fn a_higher_top_before_a_shallow_dip_is_found() {
-    // Two tops 0.1 apart with a dip of 0.3 % between them (less than `RIVAL`): the first,
+    // Two tops 0.1 apart with a dip of 0.3 % between them (less than the window): the first,
     // 1.25e-3 from its nearest node, is higher by 3e-6 but sampled 7.5e-6 low; the second
-    // sits on a node. The second's sample is the largest, and without a dip of `RIVAL` the
-    // two count as one peak: the first top's step must still be searched.
+    // sits on a node. The second's sample is the largest: the first top must be searched,
+    // though by its sample it is not the peak.
     let (left, right): (f64, f64) = (0.45125, 0.55);
     let (m, d) = (0.5 * (left + right), 0.5 * (right - left));
     let a = 0.003 / d.powi(4);
@@ -139,7 +172,7 @@ fn a_higher_top_before_a_shallow_dip_is_found() {
     let (_, top) = brent_max(f, t_top - 1e-4, t_top + 1e-4, (t_top, f(t_top)));
     // the larger sample is the right top's
     assert!(f(right) > f(0.4525).max(f(0.45)));
-    let (t, v) = peak_of(f);
+    let (t, v, _) = peak_of(f);
     assert!((t - t_top).abs() < 1e-5, "{t} vs {t_top}");
     assert!((v - top).abs() < 1e-13, "{v} vs {top}");
 }
