@@ -141,6 +141,34 @@ impl Segment {
             self.a,
         )
     }
+
+    /// The segment that follows this one from `t`: starting where this one is at `t`, with
+    /// speed `v` (m/s) and acceleration `a` (m/s^2).
+    pub fn then(&self, t: f64, v: f64, a: f64, phase: Phase) -> Segment {
+        Segment {
+            t0: t,
+            x0: self.at(t).0,
+            v0: v,
+            a,
+            phase,
+        }
+    }
+
+    /// Braking from `t` at `a_brake` (m/s^2, positive), from this segment's speed there (never
+    /// backwards).
+    pub fn braking_from(&self, t: f64, a_brake: f64) -> Segment {
+        self.then(t, self.at(t).1.max(0.0), -a_brake, Phase::Braking)
+    }
+
+    /// When a braking segment comes to rest (s).
+    pub fn stop_time(&self) -> f64 {
+        self.t0 + self.v0 / -self.a
+    }
+
+    /// Standing from `t` where this segment is then.
+    pub fn stopped_at(&self, t: f64) -> Segment {
+        self.then(t, 0.0, 0.0, Phase::Stopped)
+    }
 }
 
 /// The robot's prescribed motion, built segment by segment as the run decides it (the brake
@@ -203,26 +231,18 @@ impl RobotProfile {
         &self.segs[i]
     }
 
-    fn push(&mut self, t: f64, v: f64, a: f64, phase: Phase) {
-        let (x, _, _) = self.current().at(t);
+    fn push(&mut self, seg: Segment) {
         if self.n < self.segs.len() {
-            self.segs[self.n] = Segment {
-                t0: t,
-                x0: x,
-                v0: v,
-                a,
-                phase,
-            };
+            self.segs[self.n] = seg;
             self.n += 1;
         }
     }
 
     /// Begin braking at `t`; returns the time the robot will stand still.
     pub fn brake(&mut self, t: f64) -> f64 {
-        let (_, v, _) = self.current().at(t);
-        let v = v.max(0.0);
-        self.push(t, v, -self.a_brake, Phase::Braking);
-        let t_stop = t + v / self.a_brake;
+        let braking = self.current().braking_from(t, self.a_brake);
+        let t_stop = braking.stop_time();
+        self.push(braking);
         self.t_brake = Some(t);
         self.t_stop = Some(t_stop);
         t_stop
@@ -232,11 +252,11 @@ impl RobotProfile {
     pub fn on_time(&mut self, t: f64) -> Option<&'static str> {
         let near = |a: Option<f64>| a.is_some_and(|a| (t - a).abs() <= 1e-12 * (1.0 + a.abs()));
         if near(self.t_stop) && self.current().phase == Phase::Braking {
-            self.push(t, 0.0, 0.0, Phase::Stopped);
+            self.push(self.current().stopped_at(t));
             return Some("robot_stopped");
         }
         if near(self.t_cruise) && self.current().phase == Phase::Accelerating {
-            self.push(t, self.v_max, 0.0, Phase::Cruising);
+            self.push(self.current().then(t, self.v_max, 0.0, Phase::Cruising));
             return Some("robot_cruising");
         }
         None

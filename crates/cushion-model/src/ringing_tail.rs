@@ -265,14 +265,7 @@ impl StopRinging {
         if cruising_to_brake {
             let tb = m.pending_brake.unwrap_or(f64::INFINITY);
             if tb < m.t_end {
-                let (x, v, _) = seg.at(tb);
-                last = Segment {
-                    t0: tb,
-                    x0: x,
-                    v0: v.max(0.0),
-                    a: -m.robot.a_brake,
-                    phase: Phase::Braking,
-                };
+                last = seg.braking_from(tb, m.robot.a_brake);
                 if !self.extend_tail(m, &mut tail, y, &last) {
                     return None;
                 }
@@ -280,15 +273,9 @@ impl StopRinging {
             }
         }
         if last.phase == Phase::Braking {
-            let t_stop = last.t0 + last.v0 / m.robot.a_brake;
+            let t_stop = last.stop_time();
             if t_stop < m.t_end {
-                let stopped = Segment {
-                    t0: t_stop,
-                    x0: last.at(t_stop).0,
-                    v0: 0.0,
-                    a: 0.0,
-                    phase: Phase::Stopped,
-                };
+                let stopped = last.stopped_at(t_stop);
                 if !self.extend_tail(m, &mut tail, y, &stopped) {
                     return None;
                 }
