@@ -246,7 +246,7 @@ impl StopRinging {
                 // (or right after the robot's next kink: a new equilibrium, a new amplitude)
                 let tenth = 0.1 * self.ringing_period_guess(m);
                 let kink = match seg.phase {
-                    Phase::Braking => seg.t0 + seg.v0 / m.robot.a_brake,
+                    Phase::Braking => seg.stop_time(),
                     _ => m.pending_brake.unwrap_or(f64::INFINITY),
                 };
                 let next = t + wait.map_or(tenth, |w| w.max(tenth));
@@ -394,7 +394,7 @@ fn tail_changes_nothing(
             let (x_r, v_r, _) = seg.at(t);
             // where the robot comes to rest (or is at t_end if it never does)
             let x_r_final = match last.phase {
-                Phase::Braking => last.at(last.t0 + last.v0 / m.robot.a_brake).0,
+                Phase::Braking => last.at(last.stop_time()).0,
                 _ => last.at(m.t_end).0,
             };
             let (x_p, v_p) = (y[j], y[j + 1]);
