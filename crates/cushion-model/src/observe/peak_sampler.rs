@@ -201,10 +201,10 @@ impl PeakSampler {
         // Each quantity's samples in turn; a top they confirm is searched at once, on this
         // step's dense output and, for a top at its start, the kept step's before it.
         let here = |t: f64| model.eval(t, step.at(t).as_slice(), &seg, &r);
-        let kept = self.kept.take();
+        let kept = &self.kept;
         // (a top at the start confirmed by this step's samples was a candidate at the end of
         // the last one, under the same test: that step is kept)
-        let behind = |t: f64| match &kept {
+        let behind = |t: f64| match kept {
             Some(c) => model.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime),
             None => here(t),
         };
@@ -260,13 +260,14 @@ impl PeakSampler {
         m.peak_fc = m.peak_fc.max(self.fc.peak.value);
         m.max_stroke = m.max_stroke.max(self.s.peak.value);
         // a sample at the step's end may be a top: keep the step until the next one shows
-        if self.fr.may_top() || self.fc.may_top() || (tool && self.s.may_top()) {
-            self.kept = Some(KeptStep {
-                dense: step.dense.leading(),
-                seg,
-                regime: r,
+        self.kept =
+            (self.fr.may_top() || self.fc.may_top() || (tool && self.s.may_top())).then(|| {
+                KeptStep {
+                    dense: step.dense.leading(),
+                    seg,
+                    regime: r,
+                }
             });
-        }
         // a stick or slip of the tool, or a slip that turns, changes its friction at once
         let (now, then) = (&model.regime, &r);
         if now.tool_stuck != then.tool_stuck || now.tool_dir != then.tool_dir {
