@@ -141,6 +141,12 @@ impl PeakTracker {
         top
     }
 
+    /// The largest value seen, sample or located.
+    #[inline]
+    pub fn largest(&self) -> f64 {
+        self.known
+    }
+
     /// Whether the last sample may still prove a top to search (it rose, near the largest
     /// value seen): the step it ends must be kept until the next sample comes.
     #[inline]

@@ -26,25 +26,33 @@ pub(crate) struct Peaks {
     pub max_p1: f64,
 }
 
-/// One sample of the physics: what the peaks read.
+/// A quantity whose peak is found: its value in an evaluation of the physics, and what is
+/// reported for it (the signed force where the value is `|F_r|`).
+type Quantity = fn(&Eval) -> (f64, f64);
+
+/// `|F_r|`, `F_c` and the stroke, in the order of [`PeakSampler::trackers`].
+const QUANTITIES: [Quantity; 3] = [|e| (e.f_r.abs(), e.f_r), |e| (e.f_c, e.f_c), |e| (e.s, e.s)];
+const ROBOT_FORCE: usize = 0;
+const STROKE: usize = 2;
+
+/// One sample of the physics: what the peaks read (kept whole, an `Eval` would have all its
+/// fields computed).
 #[derive(Clone, Copy, Debug)]
 struct Sampled {
     t: f64,
-    f_r: f64,
-    f_c: f64,
-    s: f64,
+    /// The value of each of [`QUANTITIES`].
+    values: [f64; 3],
     p1: f64,
 }
 
 /// The peak observer: samples each accepted step and searches the tops near the peaks.
 pub(crate) struct PeakSampler {
     /// The largest values so far, samples or located (what the early end and the sampling
-    /// rule compare with); after [`PeakSampler::finish`], the located peaks.
+    /// rule compare with; `peak_fr` is then the largest `|F_r|`, its sign comes at the end);
+    /// after [`PeakSampler::finish`], the located peaks.
     pub peaks: Peaks,
-    /// `|F_r|` (reporting the signed force), `F_c`, `s`.
-    fr: PeakTracker,
-    fc: PeakTracker,
-    s: PeakTracker,
+    /// One per quantity of [`QUANTITIES`].
+    trackers: [PeakTracker; 3],
     /// The last step, while a sample at its end may be a top.
     kept: Option<KeptStep>,
     /// `F_r, F_c, s, sd` at the end of the last step.
@@ -79,9 +87,11 @@ impl PeakSampler {
                 max_stroke: s0,
                 max_p1: e0.p1,
             },
-            fr: start(e0.f_r.abs(), e0.f_r),
-            fc: start(e0.f_c, e0.f_c),
-            s: start(s0, s0),
+            trackers: [
+                start(e0.f_r.abs(), e0.f_r),
+                start(e0.f_c, e0.f_c),
+                start(s0, s0),
+            ],
             kept: None,
             last_sample: None,
             force_sample: 0,
@@ -108,24 +118,21 @@ impl PeakSampler {
         let n = model.layout.n.clamp(1, MAX_STATES);
         if let Some(c) = self.kept.take() {
             let at = |t: f64| model.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime);
-            let open = |tr: &mut PeakTracker, f: &dyn Fn(&Eval) -> (f64, f64)| {
+            let tracked = tracked(model);
+            for (tr, q) in self.trackers.iter_mut().zip(QUANTITIES).take(tracked) {
                 if let Some(b) = tr.open_top() {
-                    let (t, value, _) = search(b, f64::INFINITY, |t| f(&at(t)).0, |_| 0.0);
-                    let reported = f(&at(t)).1;
+                    let (t, value, _) = search(b, f64::INFINITY, |t| q(&at(t)).0, |_| 0.0);
+                    let reported = q(&at(t)).1;
                     tr.found(Peak { t, value, reported });
                 }
-            };
-            open(&mut self.fr, &|e| (e.f_r.abs(), e.f_r));
-            open(&mut self.fc, &|e| (e.f_c, e.f_c));
-            if model.layout.tool.is_some() {
-                open(&mut self.s, &|e| (e.s, e.s));
             }
         }
+        let [fr, fc, s] = &self.trackers;
         let m = &mut self.peaks;
-        m.peak_fr = self.fr.peak.reported;
-        m.t_peak_fr = self.fr.peak.t;
-        m.peak_fc = self.fc.peak.value;
-        m.max_stroke = self.s.peak.value;
+        m.peak_fr = fr.peak.reported;
+        m.t_peak_fr = fr.peak.t;
+        m.peak_fc = fc.peak.value;
+        m.max_stroke = s.peak.value;
     }
 
     /// Sample an accepted step, in the regime and robot segment it ran in (`model`'s handlers
@@ -153,7 +160,7 @@ impl PeakSampler {
             // `tests/peaks.rs::a_force_that_jumps_when_the_robot_stops_is_its_peak`). A
             // value at a jump is exact where it is: it is found, not searched.
             let f_r = model.eval_inline(t0, step.y0.as_slice(), &seg, &r).f_r;
-            self.fr.found(Peak {
+            self.trackers[ROBOT_FORCE].found(Peak {
                 t: t0,
                 value: f_r.abs(),
                 reported: f_r,
@@ -173,13 +180,10 @@ impl PeakSampler {
                     || (sd0 > 0.0 && e1.sd <= 0.0)
             }
         };
-        // the samples, in time order (only what the peaks read: kept whole, an `Eval` would
-        // have all its fields computed)
+        // the samples, in time order
         let pick = |t: f64, e: &Eval| Sampled {
             t,
-            f_r: e.f_r,
-            f_c: e.f_c,
-            s: e.s,
+            values: QUANTITIES.map(|q| q(e).0),
             p1: e.p1,
         };
         let end = pick(t1, &e1);
@@ -208,8 +212,8 @@ impl PeakSampler {
             Some(c) => model.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime),
             None => here(t),
         };
-        let locate = |b: Bracket, f: &dyn Fn(&Eval) -> (f64, f64)| {
-            let (t, value, side) = search(b, t0, |t| f(&behind(t)).0, |t| f(&here(t)).0);
+        let locate = |b: Bracket, q: Quantity| {
+            let (t, value, side) = search(b, t0, |t| q(&behind(t)).0, |t| q(&here(t)).0);
             let e = match side {
                 Side::Before => behind(t),
                 Side::After => here(t),
@@ -217,24 +221,14 @@ impl PeakSampler {
             Peak {
                 t,
                 value,
-                reported: f(&e).1,
+                reported: q(&e).1,
             }
         };
-        for (t, v) in samples.iter().map(|p| (p.t, p.f_r.abs())) {
-            if let Some(b) = self.fr.sample(t, v) {
-                self.fr.found(locate(b, &|e| (e.f_r.abs(), e.f_r)));
-            }
-        }
-        for (t, v) in samples.iter().map(|p| (p.t, p.f_c)) {
-            if let Some(b) = self.fc.sample(t, v) {
-                self.fc.found(locate(b, &|e| (e.f_c, e.f_c)));
-            }
-        }
-        let tool = model.layout.tool.is_some();
-        if tool {
-            for (t, v) in samples.iter().map(|p| (p.t, p.s)) {
-                if let Some(b) = self.s.sample(t, v) {
-                    self.s.found(locate(b, &|e| (e.s, e.s)));
+        let tracked = tracked(model);
+        for (i, tr) in self.trackers.iter_mut().enumerate().take(tracked) {
+            for p in samples {
+                if let Some(b) = tr.sample(p.t, p.values[i]) {
+                    tr.found(locate(b, QUANTITIES[i]));
                 }
             }
         }
@@ -244,34 +238,32 @@ impl PeakSampler {
             if p.p1 > m.max_p1 {
                 m.max_p1 = p.p1;
             }
-            if p.f_r.abs() > m.peak_fr.abs() {
-                m.peak_fr = p.f_r;
-            }
-            if p.f_c > m.peak_fc {
-                m.peak_fc = p.f_c;
-            }
-            if tool && p.s > m.max_stroke {
-                m.max_stroke = p.s;
-            }
         }
-        if self.fr.peak.value > m.peak_fr.abs() {
-            m.peak_fr = self.fr.peak.reported;
-        }
-        m.peak_fc = m.peak_fc.max(self.fc.peak.value);
-        m.max_stroke = m.max_stroke.max(self.s.peak.value);
+        let [fr, fc, s] = &self.trackers;
+        m.peak_fr = fr.largest();
+        m.peak_fc = fc.largest();
+        m.max_stroke = s.largest();
         // a sample at the step's end may be a top: keep the step until the next one shows
-        self.kept =
-            (self.fr.may_top() || self.fc.may_top() || (tool && self.s.may_top())).then(|| {
-                KeptStep {
-                    dense: step.dense.leading(),
-                    seg,
-                    regime: r,
-                }
-            });
+        let may_top = self.trackers[..tracked].iter().any(PeakTracker::may_top);
+        self.kept = may_top.then(|| KeptStep {
+            dense: step.dense.leading(),
+            seg,
+            regime: r,
+        });
         // a stick or slip of the tool, or a slip that turns, changes its friction at once
         let (now, then) = (&model.regime, &r);
         if now.tool_stuck != then.tool_stuck || now.tool_dir != then.tool_dir {
             self.sample_start = true;
         }
+    }
+}
+
+/// How many of [`QUANTITIES`] a run tracks: the stroke only where there is a tool.
+fn tracked(model: &Model) -> usize {
+    if model.layout.tool.is_some() {
+        QUANTITIES.len()
+    } else {
+        // the stroke comes last: the ones before it
+        STROKE
     }
 }
