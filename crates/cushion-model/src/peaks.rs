@@ -14,7 +14,7 @@
 //! hold the larger peak. Where a quantity jumps (`F_r` at a robot kink under a rigid tool) the
 //! value after the jump is exact where it is, and is offered as found ([`PeakTracker::found`]).
 
-use crate::model::{Regime, MAX_STATES};
+use crate::model::{Eval, Model, Regime, MAX_STATES};
 use crate::physics::Segment;
 use cushion_ode::DenseOutput;
 
@@ -35,12 +35,13 @@ pub(crate) struct KeptStep {
 }
 
 impl KeptStep {
-    /// The state at `t` on the step's dense output; the quadratures after the kept states are
-    /// zero.
-    pub fn state_at(&self, t: f64) -> [f64; MAX_STATES] {
+    /// The physics at `t` on the step's dense output, in the segment and regime the step ran
+    /// in (the quadratures after the kept states, which no force reads, are zero).
+    pub fn eval(&self, model: &Model, t: f64) -> Eval {
         let mut y = [0.0; MAX_STATES];
         y[..MAX_DYNAMIC].copy_from_slice(self.dense.eval(t).as_slice());
-        y
+        let n = model.layout.n.clamp(1, MAX_STATES);
+        model.eval(t, &y[..n], &self.seg, &self.regime)
     }
 }
 

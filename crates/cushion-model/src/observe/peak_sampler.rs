@@ -7,7 +7,7 @@
 //! top at its end, once the next step's first sample confirms it, on both steps (the step is
 //! kept until then).
 
-use crate::model::{Eval, Model, MAX_STATES};
+use crate::model::{Eval, Model};
 use crate::peaks::{search, top_window, Bracket, KeptStep, Peak, PeakTracker, Side, K};
 use cushion_ode::Step;
 
@@ -115,9 +115,8 @@ impl PeakSampler {
     /// The run has ended: a quantity still rising at the last step's end has its top there (or
     /// just before it, in the last step); the peaks become the located ones.
     pub fn finish(&mut self, model: &Model) {
-        let n = model.layout.n.clamp(1, MAX_STATES);
         if let Some(c) = self.kept.take() {
-            let at = |t: f64| model.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime);
+            let at = |t: f64| c.eval(model, t);
             let tracked = tracked(model);
             for (tr, q) in self.trackers.iter_mut().zip(QUANTITIES).take(tracked) {
                 if let Some(b) = tr.open_top() {
@@ -142,7 +141,6 @@ impl PeakSampler {
         let y1 = step.y1.as_slice();
         let seg = *model.robot.segment_at(0.5 * (t0 + t1));
         let r = *model.step_regime();
-        let n = model.layout.n.clamp(1, MAX_STATES);
         let tk = |k: usize| {
             if k == K {
                 t1
@@ -209,7 +207,7 @@ impl PeakSampler {
         // (a top at the start confirmed by this step's samples was a candidate at the end of
         // the last one, under the same test: that step is kept)
         let behind = |t: f64| match kept {
-            Some(c) => model.eval(t, &c.state_at(t)[..n], &c.seg, &c.regime),
+            Some(c) => c.eval(model, t),
             None => here(t),
         };
         let locate = |b: Bracket, q: Quantity| {
