@@ -37,6 +37,11 @@ all segments, dense output on for solve_ivp, peaks not included); right-hand-sid
 (`stats["rhs_evals"]`; the peers: every call of the right-hand side, finite-difference Jacobians
 and event location included).
 
+The engine's methods: dp5 and dop853 (rtol 1e-3 to 1e-12, atol = rtol / 1000), rodas and auto
+(to 1e-10), rk4 and euler (fixed steps), all at the scene's defaults (the energy ledger on: four
+more states, integrated and in the error norm); and dp5 and dop853 with `energy.ledger = false`
+("ledger off"), which compute what the peers do.
+
 Peers (the Python model: 4 states, contacts switched inside the right-hand side, the robot's
 kinks as segment boundaries, the sensor found by root-finding): SciPy solve_ivp RK45, DOP853,
 Radau, LSODA (finite-difference Jacobians, as a user gets them); Hairer's Fortran DOPRI5 and
@@ -83,7 +88,11 @@ SCENES = {
     "compressible": (DT70, {"hydraulic.bulk_modulus": 1.5e9}, (sts.Compressible, 0.070), True),
     "oscillator": None,
 }
-EXPLICIT_OURS = ("dp5", "dop853", "rk4", "euler")
+# the engine without its energy ledger (four states instead of eight): the work the peers do,
+# which compute no energy balance
+VARIANTS = {"dp5_no_ledger": ("dp5", {"energy.ledger": False}),
+            "dop853_no_ledger": ("dop853", {"energy.ledger": False})}
+EXPLICIT_OURS = ("dp5", "dop853", "rk4", "euler", "dp5_no_ledger", "dop853_no_ledger")
 EXPLICIT_PEERS = ("RK45", "DOP853", "hairer-dopri5", "hairer-dop853", "cyrk-DOP853", "cyrk-RK45")
 
 # the damped linear oscillator: x'' + 2 zeta w x' + w^2 x = 0, x(0) = 1, x'(0) = 0, to T
@@ -113,7 +122,8 @@ def sci(x):
 
 def engine_once(name, method, rtol=None, atol=None, h=None):
     path, over, _, _ = SCENES[name]
-    st = dict(over)
+    method, extra = VARIANTS.get(method, (method, {}))
+    st = dict(over, **extra)
     kw = dict(method=method, trajectory=False)
     if h is not None:
         st["solver.fixed_step"] = h
@@ -556,6 +566,8 @@ def study(names, args, has_dop853):
             ("rk4", None, rk4_steps), ("euler", None, euler_steps)]
     if has_dop853:
         ours.insert(1, ("dop853", dp5_rtols, None))
+        ours.append(("dop853_no_ledger", dp5_rtols, None))
+    ours.append(("dp5_no_ledger", dp5_rtols, None))
     peers = ["RK45", "DOP853", "Radau", "LSODA", "hairer-dopri5", "hairer-dop853"]
     if isinstance(CYRK, dict):
         peers += ["cyrk-DOP853", "cyrk-RK45"]
@@ -609,6 +621,8 @@ def study(names, args, has_dop853):
 STYLE = {  # ours strong and thick, peers muted and thin
     "dp5": dict(color="#1f4e9c", lw=2.6, marker="o", ms=4.5),
     "dop853": dict(color="#c0171d", lw=2.6, marker="D", ms=4.5),
+    "dp5_no_ledger": dict(color="#1f4e9c", lw=1.6, marker="o", ms=3, ls=":", mfc="none"),
+    "dop853_no_ledger": dict(color="#c0171d", lw=1.6, marker="D", ms=3, ls=":", mfc="none"),
     "rodas": dict(color="#1a7f37", lw=2.6, marker="s", ms=4.5),
     "auto": dict(color="#e07b00", lw=2.0, marker="^", ms=4.5, ls="--"),
     "rk4": dict(color="#7b2c9e", lw=2.0, marker="v", ms=4.5),
@@ -623,7 +637,9 @@ STYLE = {  # ours strong and thick, peers muted and thin
     "cyrk-RK45": dict(color="#d3b5e0", lw=1.1, marker=".", ms=4, ls="--"),
 }
 LABEL = {
-    "dp5": "cushion dp5", "dop853": "cushion dop853", "rodas": "cushion rodas", "auto": "cushion auto",
+    "dp5": "cushion dp5", "dop853": "cushion dop853",
+    "dp5_no_ledger": "cushion dp5, ledger off", "dop853_no_ledger": "cushion dop853, ledger off",
+    "rodas": "cushion rodas", "auto": "cushion auto",
     "rk4": "cushion rk4 (fixed h)", "euler": "cushion euler (fixed h)",
     "RK45": "SciPy RK45", "DOP853": "SciPy DOP853", "Radau": "SciPy Radau", "LSODA": "SciPy LSODA",
     "hairer-dopri5": "Hairer DOPRI5 (scipy ode)", "hairer-dop853": "Hairer DOP853 (scipy ode)",
