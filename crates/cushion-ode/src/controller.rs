@@ -210,6 +210,27 @@ impl Controller for PredictiveController {
     }
 }
 
+/// The error's order in `h` assumed for the first attempt after a discontinuity: a force
+/// that sets in like a Hertzian contact's, `delta^1.5`, leaves a local error in the velocity
+/// of order `h^2.5` whatever the method's order.
+const ORDER_AFTER_DISCONTINUITY: f64 = 2.5;
+
+/// The largest shrink of one such retry.
+const MIN_RATIO_AFTER_DISCONTINUITY: f64 = 0.02;
+
+/// The size to retry with after the first attempt since a restart (an event or a time stop
+/// that changed the regime) was rejected with the scaled error `err > 1`. Right
+/// after a discontinuity the error grows with `h` like a low power, not like the method's
+/// order, so the controller's own retry (`err^(1/5)` for DOPRI5, at most a factor 5 or 3)
+/// would be rejected again several times over: `h (0.9 / err)^(1/2.5)`, at most 50 times
+/// shorter. The loop takes the smaller of this and the controller's size, until a step is
+/// accepted. Guarded by `tests/events.rs::a_stiff_contact_costs_few_rejected_attempts`.
+pub fn retry_after_discontinuity(err: f64, h: f64) -> f64 {
+    h * (0.9 / err)
+        .powf(1.0 / ORDER_AFTER_DISCONTINUITY)
+        .max(MIN_RATIO_AFTER_DISCONTINUITY)
+}
+
 /// Hairer's initial step selection (`hinit` of DOPRI5). `f0 = f(t0, y0)`; `sq` scales a vector
 /// by the tolerances and returns its sum of squares; `f_at(h, y) -> f(t0 + h, y)` costs one
 /// evaluation. Returns a positive step no larger than `h_max`.

@@ -18,6 +18,7 @@
 //! `tests/events.rs::a_function_zero_where_a_handler_left_it_takes_the_side_it_moves_to`.
 
 use crate::dense::DenseOutput;
+use crate::event_dip as dip;
 use crate::options::SolverOptions;
 use crate::solution::{EventRecord, Stats};
 use crate::system::{Control, Direction, EventAction, OdeSystem, MAX_EVENTS};
@@ -90,6 +91,14 @@ pub fn locate(
     b
 }
 
+/// Whether a function with the values `a` and `b` (one strict sign) at a segment's ends may
+/// cross zero and come back inside it: its straying from the chord may reach zero (`bound`,
+/// the step's chord bound; NaN, no bound: the samples alone decide).
+fn may_dip(a: f64, b: f64, bound: f64) -> bool {
+    let same_side = (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0);
+    same_side && bound >= a.abs().min(b.abs())
+}
+
 /// Interior scan fractions computed in advance; more subdivisions than this (unusual) are
 /// divided on the fly.
 const MAX_PRECOMPUTED_FRACTIONS: usize = 64;
@@ -109,7 +118,14 @@ pub struct EventScan<const N: usize> {
     pub log: Vec<EventRecord<N>>,
     /// `100 eps span`: with `100 eps |t|`, how far past a point a zero function is looked at.
     look_past: f64,
+    /// Where an event function closing on zero is forecast to cross it after the current time
+    /// ([`crate::crossing_forecast`]); infinite when none is within reach of the next step.
+    next_crossing: f64,
 }
+
+/// How far past a step's end a crossing is forecast, in steps of its length: the controller
+/// grows a step by at most this factor (DOPRI5's largest ratio).
+const FORECAST_REACH: f64 = 10.0;
 
 impl<const N: usize> EventScan<N> {
     /// For `n_events` functions over a run of length `span` (s).
@@ -129,7 +145,47 @@ impl<const N: usize> EventScan<N> {
             scan_fractions,
             log: Vec::with_capacity(64),
             look_past: 100.0 * f64::EPSILON * span.abs(),
+            next_crossing: f64::INFINITY,
         }
+    }
+
+    /// Where an event function closing on zero is forecast to cross it, after the step that
+    /// ended last (infinite: none forecast).
+    pub fn next_crossing(&self) -> f64 {
+        self.next_crossing
+    }
+
+    /// Forecast the next crossing after a step from `t0` to `t1` that crossed nothing: of
+    /// each function with one strict sign at both ends, closing on zero, that would fire
+    /// there and whose chord reaches zero within [`FORECAST_REACH`] steps, the first zero of
+    /// the quadratic through its values at the ends and the middle.
+    fn forecast<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        dense: &DenseOutput<N>,
+        (t0, t1): (f64, f64),
+        g1: &[f64; MAX_EVENTS],
+    ) {
+        let span = t1 - t0;
+        let t_mid = t0 + 0.5 * span;
+        let mut y_mid = None;
+        let mut next = f64::INFINITY;
+        for (i, (&a, &b)) in self.g[..self.n].iter().zip(g1).enumerate() {
+            let closing = (a > 0.0 && b > 0.0 && b < a) || (a < 0.0 && b < 0.0 && b > a);
+            // b / (a - b): the chord's zero past t1, in steps of its length
+            if !closing || b / (a - b) > FORECAST_REACH {
+                continue;
+            }
+            if !sys.event_direction(i).crosses(b, -b) {
+                continue;
+            }
+            let y = *y_mid.get_or_insert_with(|| dense.eval(t_mid));
+            let g_mid = sys.event(i, t_mid, &y);
+            if let Some(tau) = crate::crossing_forecast::zero_after(span, a, g_mid, b) {
+                next = next.min(t1 + tau);
+            }
+        }
+        self.next_crossing = next;
     }
 
     /// Give each function of `g` that is exactly zero at `t` the value it takes at
@@ -167,6 +223,7 @@ impl<const N: usize> EventScan<N> {
         self.eval(sys, t, y, &mut g);
         self.side_of_zeros(sys, t, &mut g, |tau| y + f * (tau - t));
         self.g = g;
+        self.next_crossing = f64::INFINITY;
     }
 
     /// Whether the step provably holds no crossing of any event function: each has one strict
@@ -180,9 +237,9 @@ impl<const N: usize> EventScan<N> {
         t0: f64,
         t1: f64,
         g1: &[f64],
+        bounds: &mut [f64; MAX_EVENTS],
     ) -> bool {
         let deviation = dense.chord_deviation();
-        let mut bounds = [f64::NAN; MAX_EVENTS];
         let n = self.n;
         sys.event_chord_bounds(t0, t1, &deviation, &mut bounds[..n]);
         (0..n).all(|i| {
@@ -218,7 +275,9 @@ impl<const N: usize> EventScan<N> {
         }
         let mut g_end = [0.0; MAX_EVENTS];
         self.eval(&*sys, t1, y1, &mut g_end);
-        if self.holds_no_crossing(&*sys, dense, t0, t1, &g_end) {
+        let mut bounds = [f64::NAN; MAX_EVENTS];
+        if self.holds_no_crossing(&*sys, dense, t0, t1, &g_end, &mut bounds) {
+            self.forecast(&*sys, dense, (t0, t1), &g_end);
             self.g = g_end;
             return (t1, *y1, EventAction::Continue);
         }
@@ -255,18 +314,24 @@ impl<const N: usize> EventScan<N> {
             let mut t_first = f64::INFINITY;
             let mut times = [f64::INFINITY; MAX_EVENTS];
             for i in 0..n {
-                if dirs[i].crosses(g_lo[i], g_hi[i]) {
-                    let sys = &*sys;
-                    let te = locate(
-                        |tt| sys.event(i, tt, &dense.eval(tt)),
-                        lo_t,
-                        g_lo[i],
-                        hi_t,
-                        g_hi[i],
-                    );
-                    times[i] = te;
-                    t_first = t_first.min(te);
-                }
+                let sys = &*sys;
+                let g = |tt| sys.event(i, tt, &dense.eval(tt));
+                let te = if dirs[i].crosses(g_lo[i], g_hi[i]) {
+                    locate(g, lo_t, g_lo[i], hi_t, g_hi[i])
+                } else if may_dip(g_lo[i], g_hi[i], bounds[i]) && dirs[i].crosses(g_lo[i], -g_lo[i])
+                {
+                    // The same side at both ends, but near enough to zero for the output's
+                    // bend to reach it: a brief crossing and back (a contact that opens and
+                    // closes again within the segment) is found at the function's extremum.
+                    match dip::crossing_in_dip(g, lo_t, g_lo[i], hi_t, g_hi[i]) {
+                        Some((t_dip, g_dip)) => locate(g, lo_t, g_lo[i], t_dip, g_dip),
+                        None => continue,
+                    }
+                } else {
+                    continue;
+                };
+                times[i] = te;
+                t_first = t_first.min(te);
             }
             if t_first.is_infinite() {
                 lo_t = hi_t;
@@ -322,6 +387,13 @@ impl<const N: usize> EventScan<N> {
             self.eval(&*sys, t_first, &y_state, &mut g);
             self.side_of_zeros(&*sys, t_first, &mut g, |tau| dense.eval(tau));
             g_lo = g;
+        }
+        if lo_t == t0 {
+            self.forecast(&*sys, dense, (t0, t1), &g_lo);
+        } else {
+            // a crossing was recorded inside the step: the values at its start no longer
+            // describe one smooth approach
+            self.next_crossing = f64::INFINITY;
         }
         self.g = g_lo;
         (t1, *y1, EventAction::Continue)

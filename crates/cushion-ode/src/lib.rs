@@ -26,9 +26,11 @@
 
 pub mod auto;
 pub mod controller;
+mod crossing_forecast;
 pub mod dense;
 pub mod dop853;
 pub mod dopri5;
+mod event_dip;
 pub mod events;
 mod failure;
 pub mod jacobian;

@@ -2,7 +2,7 @@
 //! those ideas lives in its own file.
 
 use crate::auto::AutoSwitch;
-use crate::controller::{initial_step, Controller};
+use crate::controller::{initial_step, retry_after_discontinuity, Controller};
 use crate::dense::DenseOutput;
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
@@ -37,6 +37,17 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
         Method::Euler => integration.run(&mut ExplicitRk::<N>::new(&EXPLICIT_EULER)),
     }
 }
+
+/// How far past a forecast crossing a step aims, as a share of the way there: far enough that
+/// a forecast a little early still puts the crossing inside the step (the quadratic's error
+/// shrinks like the cube of the step), near enough that the step runs only a sliver into the
+/// new regime.
+const LAND_PAST: f64 = 0.01;
+
+/// At most this many steps in a row are shortened to a forecast crossing; then one step of the
+/// controller's own size. A function that closes on zero without crossing it would otherwise
+/// draw the steps ever shorter.
+const MAX_FORECAST_STEPS: u32 = 3;
 
 /// Whether every number of an attempt is finite.
 #[inline]
@@ -73,6 +84,9 @@ struct Integration<'a, S, const N: usize> {
     ts: Vec<f64>,
     ys: Vec<State<N>>,
     next_output: usize,
+    /// No step accepted since the last restart (an event or a time stop that changed the
+    /// regime). Not at the run's start: a smooth problem starts smooth.
+    fresh: bool,
 }
 
 impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
@@ -102,6 +116,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             ts: Vec::new(),
             ys: Vec::new(),
             next_output: 0,
+            fresh: false,
         }
     }
 
@@ -206,6 +221,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
         };
         let mut ctl = Control::new();
+        let mut limited_streak = 0;
 
         loop {
             if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
@@ -227,6 +243,18 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             } else {
                 h = self.opts.fixed_step;
             }
+            // End the step where an event function closing on zero is forecast to cross it
+            // rather than run past it into the new regime (`crossing_forecast.rs`); the
+            // controller's own size is kept for the steps after.
+            let h_ctrl = h;
+            let mut forecast_limited = false;
+            if adaptive && limited_streak < MAX_FORECAST_STEPS {
+                let to_crossing = (self.events.next_crossing() - self.t) * (1.0 + LAND_PAST);
+                if to_crossing < h && to_crossing > 1e3 * f64::EPSILON * self.t.abs() {
+                    h = to_crossing;
+                    forecast_limited = true;
+                }
+            }
             let mut landing = false;
             if self.t + 1.01 * h >= next_stop {
                 h = next_stop - self.t;
@@ -246,6 +274,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 }
                 Tried::End(status, msg) => return (status, msg),
             };
+            if forecast_limited {
+                h_new = h_new.max(h_ctrl);
+                limited_streak += 1;
+            } else {
+                limited_streak = 0;
+            }
             if let Some(end) = self.observe_stiffness(stepper, &mut stiffness, t, h, &attempt) {
                 return end;
             }
@@ -374,7 +408,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 None => self.weights.error_norm(err, &y, &attempt.y1),
                 Some(err3) => self.weights.dop853_error_norm(err, err3, &y, &attempt.y1),
             };
-            let (accepted, hn) = controller.next(en, h);
+            let (accepted, mut hn) = controller.next(en, h);
+            if !accepted && self.fresh {
+                hn = hn.min(retry_after_discontinuity(en, h));
+            }
             if !accepted {
                 self.stats.rejected += 1;
                 stepper.rejected();
@@ -383,6 +420,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             h_new = hn;
         }
         self.stats.steps += 1;
+        self.fresh = false;
         // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
         let counted = Counted::new(&*self.sys);
         let completed = stepper.complete(&counted, t, &y, h, &mut attempt);
@@ -484,6 +522,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     /// After a handler (event or time stop) at `(t, y)`: evaluate `f` and the event functions
     /// anew there. Returns false if `f` is not finite.
     fn restart_at(&mut self, t: f64, y: &State<N>) -> bool {
+        self.fresh = true;
         self.f = self.rhs(t, y);
         self.events.reset(&*self.sys, t, y, &self.f);
         self.f.iter().all(|v| v.is_finite())
