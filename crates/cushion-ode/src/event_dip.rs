@@ -3,12 +3,15 @@
 //! opens and closes again between two scan points). The extremum is searched by golden
 //! section on the dense output; the search stops at the first point found beyond zero.
 
-/// Golden-section steps at most: the bracket shrinks to 0.618^60 ~ 3e-13 of the segment.
-const MAX_STEPS: usize = 60;
+/// Golden-section steps at most: the bracket shrinks to 0.618^25 ~ 6e-6 of the segment. A
+/// crossing and back narrower than that may be missed.
+const MAX_STEPS: usize = 25;
 
 /// A point of `(a, b)` where `g` is zero or on the other side from `ga` (and `gb`, of the same
-/// sign), with `g` there; `None` if the extremum toward zero that the search finds is not
-/// beyond zero.
+/// sign), with `g` there; `None` if the search finds no such point. One evaluation at the
+/// middle first, then one at the vertex of the parabola through the ends and the middle if it
+/// turns toward zero inside the segment, then golden section if `g` there is nearer zero than
+/// at both ends: a segment where `g` runs one way costs one evaluation.
 pub fn crossing_in_dip(
     mut g: impl FnMut(f64) -> f64,
     a: f64,
@@ -19,6 +22,30 @@ pub fn crossing_in_dip(
     // minimise s g, s the sign of the ends
     let s = ga.signum();
     let beyond = |v: f64| s * v <= 0.0;
+    let mid = 0.5 * (a + b);
+    let g_mid = g(mid);
+    if beyond(g_mid) {
+        return Some((mid, g_mid));
+    }
+    // The parabola through the ends and the middle: where it turns toward zero inside the
+    // segment, `g` is looked at there; if it turns back nowhere inside, no search.
+    let (u0, um, u1) = (s * ga, s * g_mid, s * gb);
+    let curvature = u0 - 2.0 * um + u1;
+    if !(curvature > 0.0) {
+        return None;
+    }
+    let theta = 0.5 + 0.25 * (u0 - u1) / curvature;
+    if !(theta > 0.0 && theta < 1.0) {
+        return None;
+    }
+    let vertex = a + theta * (b - a);
+    let g_vertex = g(vertex);
+    if beyond(g_vertex) {
+        return Some((vertex, g_vertex));
+    }
+    if !(s * g_vertex < u0.min(u1)) {
+        return None;
+    }
     let r = 0.5 * (5f64.sqrt() - 1.0);
     let (mut lo, mut hi) = (a, b);
     let mut x1 = hi - r * (hi - lo);
@@ -30,9 +57,6 @@ pub fn crossing_in_dip(
         }
         if beyond(f2) {
             return Some((x2, f2));
-        }
-        if !(hi - lo > 4.0 * f64::EPSILON * a.abs().max(b.abs())) {
-            break;
         }
         if s * f1 < s * f2 {
             hi = x2;
@@ -48,7 +72,6 @@ pub fn crossing_in_dip(
             f2 = g(x2);
         }
     }
-    let _ = gb;
     None
 }
 
