@@ -91,12 +91,18 @@ pub fn locate(
     b
 }
 
+/// How far from zero a function with the values `a` and `b` at an interval's ends stays at
+/// them, the smaller of `|a|` and `|b|`, if both are strictly on one side; `None` otherwise.
+fn clearance(a: f64, b: f64) -> Option<f64> {
+    let same_side = (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0);
+    same_side.then(|| a.abs().min(b.abs()))
+}
+
 /// Whether a function with the values `a` and `b` (one strict sign) at a segment's ends may
 /// cross zero and come back inside it: its straying from the chord may reach zero (`bound`,
 /// the step's chord bound; NaN, no bound: the samples alone decide).
 fn may_dip(a: f64, b: f64, bound: f64) -> bool {
-    let same_side = (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0);
-    same_side && bound >= a.abs().min(b.abs())
+    clearance(a, b).is_some_and(|c| bound >= c)
 }
 
 /// Interior scan fractions computed in advance; more subdivisions than this (unusual) are
@@ -228,8 +234,9 @@ impl<const N: usize> EventScan<N> {
 
     /// Whether the step provably holds no crossing of any event function: each has one strict
     /// sign at both ends (`self.g` at `t0`, `g1` at `t1`) and the system's bound of its
-    /// straying from the chord ([`OdeSystem::event_chord_bounds`], all functions at once) is
-    /// below its smaller end value, so it cannot reach zero inside.
+    /// straying from the chord ([`OdeSystem::event_chord_bounds`], all functions at once,
+    /// written into `bounds` for the scan's dip test) is below its smaller end value, so it
+    /// cannot reach zero inside.
     fn holds_no_crossing<S: OdeSystem<N>>(
         &self,
         sys: &S,
@@ -242,18 +249,8 @@ impl<const N: usize> EventScan<N> {
         let deviation = dense.chord_deviation();
         let n = self.n;
         sys.event_chord_bounds(t0, t1, &deviation, &mut bounds[..n]);
-        (0..n).all(|i| {
-            let (a, b) = (self.g[i], g1[i]);
-            let margin = if a > 0.0 && b > 0.0 {
-                a.min(b)
-            } else if a < 0.0 && b < 0.0 {
-                -a.max(b)
-            } else {
-                return false;
-            };
-            // NaN (no bound) fails the test
-            bounds[i] < margin
-        })
+        // NaN (no bound) fails the test
+        (0..n).all(|i| clearance(self.g[i], g1[i]).is_some_and(|c| bounds[i] < c))
     }
 
     /// Find and handle the events in `(t0, t1]`, in time order. Returns where the step ends if
