@@ -21,8 +21,9 @@ with stops.stiffness = 1e11); `compressible` (paper-hydraulic-dt70 with hydrauli
 oscillator x'' + 2 zeta w x' + w^2 x = 0 with a closed form (peers only: the engine runs only its
 own scenes).
 
-Error measures: object_final_velocity (m/s), peak_robot_force (N), t_detect (s), absolute, against a
-reference computed two ways and printed side by side: the hydraulic scenes, the steel stops: the
+Error measures: object_final_velocity (m/s), peak_robot_force (N), t_detect (s), and
+trajectory_velocity (m/s: the largest error of the tool's and the object's speeds at 99 fixed
+times, every 3 ms), absolute, against a reference computed two ways and printed side by side: the hydraulic scenes, the steel stops: the
 engine's dp5 at rtol 1e-13 / atol 1e-16 and SciPy's DOP853 (solve_ivp) at the same tolerances on
 the Python model of bench/scene_scipy.py / stiff_scenes_scipy.py; the compressible scene: the
 engine's rodas at 1e-12 / 1e-15 and SciPy's Radau (exact Jacobian) at 1e-12 / 1e-15; the bistable
@@ -39,8 +40,9 @@ and event location included).
 
 The engine's methods: dp5 and dop853 (rtol 1e-3 to 1e-12, atol = rtol / 1000), rodas and auto
 (to 1e-10), rk4 and euler (fixed steps), all at the scene's defaults (the energy ledger on: four
-more states, integrated and in the error norm); and dp5 and dop853 with `energy.ledger = false`
-("ledger off"), which compute what the peers do.
+more states, integrated and in the error norm); dp5 and dop853 with `energy.ledger = false`
+("ledger off"), which compute what the peers do; and dp5 with `solver.ringing_tail = false`
+("ringing tail off": the tool's last ringing on its stop integrated, not written in closed form).
 
 Peers (the Python model: 4 states, contacts switched inside the right-hand side, the robot's
 kinks as segment boundaries, the sensor found by root-finding): SciPy solve_ivp RK45, DOP853,
@@ -49,7 +51,11 @@ DOP853 through scipy.integrate.ode (the sensor: `solout` stops at the first step
 Brent's method on re-integrations from the step before); CyRK's C++ DOP853 and RK45 with a
 numba-compiled right-hand side (`nbsolve2_ivp`; the cruise in 0.5 ms chunks, each restarted with
 the last step size (at most half a chunk: CyRK's limit), until a step passes the sensor, then as for Hairer's). Hairer's and CyRK's
-runs report the final speed and t_detect only (no dense output to find the peak force from).
+runs report the final speed and t_detect only (no dense output to find the peak force or the
+fixed-time samples from). The fixed-time samples: the engine's uniform trajectory samples
+(`sample_interval` 3 ms, read off its dense output, from a second, untimed run of the same
+setting: recording does not change the steps), and solve_ivp's dense output; the oscillator has
+no trajectory measure.
 """
 
 import argparse
@@ -75,7 +81,13 @@ import stiff_scenes_scipy as sts  # noqa: E402
 
 import cushion  # noqa: E402
 
-MEASURES = ("object_final_velocity", "peak_robot_force", "t_detect")
+MEASURES = ("object_final_velocity", "peak_robot_force", "t_detect")  # read off the summary
+# the largest error of the tool's and the object's speeds (m/s) at SAMPLE_TIMES
+TRAJECTORY = "trajectory_velocity"
+ALL_MEASURES = MEASURES + (TRAJECTORY,)
+SAMPLE_INTERVAL = ss.T_END / 100
+# k * interval, as the engine's recorder computes its uniform sample times (the same floats)
+SAMPLE_TIMES = np.arange(1, 100) * SAMPLE_INTERVAL
 DT70 = "sweeps/scenes/paper-hydraulic-dt70.toml"
 SCENES = {
     # name: (scene file, overrides, python model (class, dead time) or None, stiff)
@@ -91,8 +103,12 @@ SCENES = {
 # the engine without its energy ledger (four states instead of eight): the work the peers do,
 # which compute no energy balance
 VARIANTS = {"dp5_no_ledger": ("dp5", {"energy.ledger": False}),
-            "dop853_no_ledger": ("dop853", {"energy.ledger": False})}
-EXPLICIT_OURS = ("dp5", "dop853", "rk4", "euler", "dp5_no_ledger", "dop853_no_ledger")
+            "dop853_no_ledger": ("dop853", {"energy.ledger": False}),
+            # the tool's ringing on its stop integrated to t_end, not written in closed form: what
+            # the ringing tail costs the trajectory (it is built to keep the summary, not the
+            # ringing's phase, within the tolerance)
+            "dp5_no_tail": ("dp5", {"solver.ringing_tail": False})}
+EXPLICIT_OURS = ("dp5", "dop853", "rk4", "euler", "dp5_no_ledger", "dop853_no_ledger", "dp5_no_tail")
 EXPLICIT_PEERS = ("RK45", "DOP853", "hairer-dopri5", "hairer-dop853", "cyrk-DOP853", "cyrk-RK45")
 
 # the damped linear oscillator: x'' + 2 zeta w x' + w^2 x = 0, x(0) = 1, x'(0) = 0, to T
@@ -133,6 +149,30 @@ def engine_once(name, method, rtol=None, atol=None, h=None):
     return lambda: cushion.simulate(path, set=st, **kw)
 
 
+def engine_samples(name, method, setting):
+    """The tool's and the object's speeds at SAMPLE_TIMES, (2, 99), from a run that records
+    its trajectory (NaN where the scene has no such body); None if a sample time is missing."""
+    path, over, _, _ = SCENES[name]
+    method, extra = VARIANTS.get(method, (method, {}))
+    st = dict(over, **extra)
+    kw = dict(method=method, trajectory=True, sample_interval=SAMPLE_INTERVAL)
+    if setting.get("h") is not None:
+        st["solver.fixed_step"] = setting["h"]
+    else:
+        kw.update(rtol=setting["rtol"], atol=setting["atol"])
+    run = cushion.simulate(os.path.join(ROOT, path), set=st, **kw)
+    idx = np.searchsorted(run.t, SAMPLE_TIMES)
+    if np.any(idx >= run.t.size) or np.any(run.t[np.minimum(idx, run.t.size - 1)] != SAMPLE_TIMES):
+        return None
+    return np.vstack([run.v_t[idx], run.v_p[idx]])
+
+
+def trajectory_error(samples, ref):
+    """The largest |speed - reference| over the sample times and the bodies the scene has."""
+    d = np.abs(np.asarray(samples) - np.asarray(ref))
+    return float(np.nanmax(d)) if np.isfinite(d).any() else float("nan")
+
+
 def timed(fn, first_seconds, target, lo, hi):
     n = int(min(hi, max(lo, target / max(first_seconds, 1e-9))))
     ts = []
@@ -156,8 +196,11 @@ def engine_point(name, method, setting, args):
     if s["status"] != "ok":
         return dict(status=f"failed: {s['status']}", rhs_evals=s["stats"]["rhs_evals"], seconds=first)
     secs, n = timed(fn, first, args.engine_target, args.engine_min, args.engine_max)
-    return dict(status="ok", values={m: s[m] for m in MEASURES}, seconds=secs,
-                rhs_evals=s["stats"]["rhs_evals"], repeats=n)
+    values = {m: s[m] for m in MEASURES}
+    samples = engine_samples(name, method, setting)
+    if samples is not None:
+        values[TRAJECTORY] = samples
+    return dict(status="ok", values=values, seconds=secs, rhs_evals=s["stats"]["rhs_evals"], repeats=n)
 
 
 def engine_has_dop853():
@@ -181,7 +224,19 @@ def scipy_ivp_once(name, method, rtol, atol, budget, analytic=False):
     vals = dict(sts.peaks(scene, pieces))
     vals["object_final_velocity"] = st["y_end"][scene.i_vp]
     vals["t_detect"] = st["t_detect"]
-    return dict(status="ok", values={m: vals[m] for m in MEASURES}, seconds=secs, rhs_evals=st["f_calls"])
+    vals[TRAJECTORY] = ivp_samples(scene, pieces)
+    return dict(status="ok", values={m: vals[m] for m in ALL_MEASURES}, seconds=secs, rhs_evals=st["f_calls"])
+
+
+def ivp_samples(scene, pieces):
+    """The tool's and the object's speeds at SAMPLE_TIMES from solve_ivp's dense output, (2, 99)."""
+    out = np.full((2, SAMPLE_TIMES.size), np.nan)
+    for ode, _, ts in pieces:
+        inside = (SAMPLE_TIMES >= ts[0]) & (SAMPLE_TIMES <= ts[-1])
+        if inside.any():
+            ys = ode(SAMPLE_TIMES[inside])
+            out[0, inside], out[1, inside] = ys[1], ys[scene.i_vp]
+    return out
 
 
 def osc_ivp_once(method, rtol, atol, budget):
@@ -482,7 +537,7 @@ def peer_point(name, method, rtol, args):
             r = fn()
         except Exception as e:  # noqa: BLE001  (e.g. a NaN state handed to the next segment)
             return dict(status=f"failed: {type(e).__name__}: {e}"[:120])
-        if r["status"] == "ok" and not all(math.isfinite(v) for v in r["values"].values()):
+        if r["status"] == "ok" and not all(np.isfinite(v).all() for v in r["values"].values()):
             r["status"] = "failed: non-finite result"
         if r["status"] != "ok":
             return r
@@ -504,6 +559,8 @@ def references(names, args):
             out[name] = dict(A=("closed form", {"object_final_velocity": v}), B=("closed form", {"object_final_velocity": v}),
                              engine=None, peers={"object_final_velocity": v}, floor={"object_final_velocity": 1e-15})
             continue
+        ref_method = "rodas" if name == "compressible" else "dp5"
+        ref_tol = dict(rtol=1e-12, atol=1e-15) if name == "compressible" else dict(rtol=1e-13, atol=1e-16)
         model = SCENES[name][2]
         if name == "compressible":
             a = engine_once(name, "rodas", rtol=1e-12, atol=1e-15)()
@@ -513,10 +570,12 @@ def references(names, args):
             la = "cushion dp5 rtol 1e-13 atol 1e-16"
         assert a.summary["status"] == "ok", (name, a.summary["status"])
         va = {m: a.summary[m] for m in MEASURES}
+        va[TRAJECTORY] = engine_samples(name, ref_method, ref_tol)
         if model is None:
             b = engine_once(name, "rodas", rtol=1e-11, atol=1e-14)()
             assert b.summary["status"] == "ok", (name, b.summary["status"])
             vb = {m: b.summary[m] for m in MEASURES}
+            vb[TRAJECTORY] = engine_samples(name, "rodas", dict(rtol=1e-11, atol=1e-14))
             lb = "cushion rodas rtol 1e-11 atol 1e-14"
             eng, peers = va, None
         else:
@@ -531,16 +590,23 @@ def references(names, args):
                     vb = dict(sts.peaks(scene, pieces))
                     vb["object_final_velocity"] = st["y_end"][scene.i_vp]
                     vb["t_detect"] = st["t_detect"]
-                    vb = {m: vb[m] for m in MEASURES}
+                    vb[TRAJECTORY] = ivp_samples(scene, pieces)
+                    vb = {m: vb[m] for m in ALL_MEASURES}
                 else:
                     r = scipy_ivp_once(name, "DOP853", 1e-13, 1e-16, args.ref_budget)
                     assert r["status"] == "ok", r["status"]
                     vb, lb = r["values"], "SciPy DOP853 (solve_ivp) rtol 1e-13 atol 1e-16"
             eng, peers = va, vb
         floor = {m: max(10 * abs(va[m] - vb[m]), 1e-15 * abs(va[m])) for m in MEASURES}
+        floor[TRAJECTORY] = max(10 * disagreement(va, vb, TRAJECTORY), 1e-15)
         out[name] = dict(A=(la, va), B=(lb, vb), engine=eng, peers=peers, floor=floor)
         log(f"reference {name} ({time.perf_counter() - t0:.1f} s)")
     return out
+
+
+def disagreement(va, vb, m):
+    """|A - B| of one measure (for the trajectory, the largest over its samples)."""
+    return trajectory_error(va[m], vb[m]) if m == TRAJECTORY else abs(va[m] - vb[m])
 
 
 # ------------------------------------------------------------------------------ the study
@@ -553,7 +619,8 @@ def study(names, args, has_dop853):
         r = refs[name]
         for m in r["A"][1]:
             a, b = r["A"][1][m], r["B"][1][m]
-            log(f"  {name:22s} {m:22s} A {a:+.15g}  B {b:+.15g}  |A-B| {abs(a - b):.2e}  "
+            shown = (lambda v: f"{v:+.15g}") if m != TRAJECTORY else (lambda v: "(99 x 2 samples)".ljust(22))
+            log(f"  {name:22s} {m:22s} A {shown(a)}  B {shown(b)}  |A-B| {disagreement(r['A'][1], r['B'][1], m):.2e}  "
                 f"(A: {r['A'][0]}; B: {r['B'][0]})")
 
     q = args.quick
@@ -568,19 +635,25 @@ def study(names, args, has_dop853):
         ours.insert(1, ("dop853", dp5_rtols, None))
         ours.append(("dop853_no_ledger", dp5_rtols, None))
     ours.append(("dp5_no_ledger", dp5_rtols, None))
+    ours.append(("dp5_no_tail", dp5_rtols, None))
     peers = ["RK45", "DOP853", "Radau", "LSODA", "hairer-dopri5", "hairer-dop853"]
     if isinstance(CYRK, dict):
         peers += ["cyrk-DOP853", "cyrk-RK45"]
 
     def add(name, method, family, setting, res, ref, floor):
-        for m in MEASURES:
+        for m in ALL_MEASURES:
             if name == "oscillator" and m != "object_final_velocity":
                 continue
             v = res.get("values", {}).get(m) if res["status"] == "ok" else None
-            err = abs(v - ref[m]) if v is not None else float("nan")
+            if v is None:
+                err = float("nan")
+            elif m == TRAJECTORY:
+                err, v = trajectory_error(v, ref[m]), None  # (the samples are not written)
+            else:
+                err = abs(v - ref[m])
             rows.append(dict(scene=name, method=method, family=family, setting=setting, error_measure=m,
                              status=res["status"], value=v if v is not None else float("nan"), error=err,
-                             resolved=bool(v is not None and err > floor[m]), floor=floor[m],
+                             resolved=bool(math.isfinite(err) and err > floor[m]), floor=floor[m],
                              seconds=res.get("seconds", float("nan")), rhs_evals=res.get("rhs_evals", -1),
                              repeats=res.get("repeats", 0)))
 
@@ -623,6 +696,7 @@ STYLE = {  # ours strong and thick, peers muted and thin
     "dop853": dict(color="#c0171d", lw=2.6, marker="D", ms=4.5),
     "dp5_no_ledger": dict(color="#1f4e9c", lw=1.6, marker="o", ms=3, ls=":", mfc="none"),
     "dop853_no_ledger": dict(color="#c0171d", lw=1.6, marker="D", ms=3, ls=":", mfc="none"),
+    "dp5_no_tail": dict(color="#4f8fe0", lw=1.6, marker="o", ms=3, ls="--", mfc="none"),
     "rodas": dict(color="#1a7f37", lw=2.6, marker="s", ms=4.5),
     "auto": dict(color="#e07b00", lw=2.0, marker="^", ms=4.5, ls="--"),
     "rk4": dict(color="#7b2c9e", lw=2.0, marker="v", ms=4.5),
@@ -639,11 +713,21 @@ STYLE = {  # ours strong and thick, peers muted and thin
 LABEL = {
     "dp5": "cushion dp5", "dop853": "cushion dop853",
     "dp5_no_ledger": "cushion dp5, ledger off", "dop853_no_ledger": "cushion dop853, ledger off",
+    "dp5_no_tail": "cushion dp5, ringing tail off",
     "rodas": "cushion rodas", "auto": "cushion auto",
     "rk4": "cushion rk4 (fixed h)", "euler": "cushion euler (fixed h)",
     "RK45": "SciPy RK45", "DOP853": "SciPy DOP853", "Radau": "SciPy Radau", "LSODA": "SciPy LSODA",
     "hairer-dopri5": "Hairer DOPRI5 (scipy ode)", "hairer-dop853": "Hairer DOP853 (scipy ode)",
     "cyrk-DOP853": "CyRK DOP853 + numba", "cyrk-RK45": "CyRK RK45 + numba",
+}
+
+
+CHARTS = {  # measure: (files by work measure, what the error is, its axis label)
+    "object_final_velocity": ({"seconds": "work-precision-time.svg", "rhs_evals": "work-precision-evals.svg"},
+                              "error in the object's final speed", "|final speed - reference| (m/s)"),
+    TRAJECTORY: ({"seconds": "work-precision-trajectory.svg"},
+                 "largest error of the tool's and the object's speeds at 99 fixed times",
+                 "max |speed(t_k) - reference| (m/s)"),
 }
 
 
@@ -653,16 +737,22 @@ def charts(df, names, outdir, measure="object_final_velocity"):
     import matplotlib.pyplot as plt
 
     d = df[(df.error_measure == measure) & (df.status == "ok")]
+    names = [n for n in names if (d.scene == n).any()]
+    files, what, ylabel = CHARTS[measure]
     ncol = 4
     nrow = math.ceil(len(names) / ncol)
-    for work, xlabel, fname in (("seconds", "wall time per run (s)", "work-precision-time.svg"),
-                                ("rhs_evals", "right-hand-side evaluations per run", "work-precision-evals.svg")):
+    for work, xlabel in (("seconds", "wall time per run (s)"), ("rhs_evals", "right-hand-side evaluations per run")):
+        if work not in files:
+            continue
+        fname = files[work]
         fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.6 * nrow + 1.2), squeeze=False)
         handles = {}
         for ax, name in zip(axes.flat, names):
             s = d[d.scene == name]
             floor = s.floor.max() if len(s) else None
             for method in STYLE:
+                if method == "dp5_no_tail" and measure != TRAJECTORY:
+                    continue  # (the tail changes the trajectory, not the summary)
                 mm = s[(s.method == method) & s.resolved]
                 if mm.empty:
                     continue
@@ -681,14 +771,13 @@ def charts(df, names, outdir, measure="object_final_velocity"):
             ax.grid(True, which="major", color="#eeeeee", lw=0.6)
             ax.tick_params(labelsize=8)
             ax.set_xlabel(xlabel, fontsize=8)
-            ax.set_ylabel(("|final speed - reference| (m/s)" if name != "oscillator"
-                           else "|x'(T) - exact| (m/s)"), fontsize=8)
+            ax.set_ylabel((ylabel if name != "oscillator" else "|x'(T) - exact| (m/s)"), fontsize=8)
         for ax in list(axes.flat)[len(names):]:
             ax.set_visible(False)
         order = [m for m in STYLE if m in handles]
         fig.legend([handles[m] for m in order], [LABEL[m] for m in order], loc="lower center",
                    ncol=min(7, len(order)), fontsize=8, frameon=False)
-        fig.suptitle("Work-precision: error in the object's final speed against "
+        fig.suptitle(f"Work-precision: {what} against "
                      + ("wall time" if work == "seconds" else "right-hand-side evaluations")
                      + " (log-log; cushion strong, peers muted)", fontsize=11)
         fig.tight_layout(rect=(0, 0.07 if nrow > 1 else 0.12, 1, 0.96))
@@ -732,7 +821,10 @@ def machine_info():
     info["load_average_at_start"] = os.getloadavg()
     git = lambda *a: subprocess.run(["git", *a], cwd=ROOT, capture_output=True, text=True).stdout.strip()
     info["git_commit"] = git("rev-parse", "HEAD")
-    info["git_dirty_files"] = [l[3:] for l in git("status", "--porcelain").splitlines()]
+    # (porcelain lines begin with two status columns and a space; the helper strips the output's
+    # ends, which would eat the first line's leading blank)
+    porcelain = subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, capture_output=True, text=True).stdout
+    info["git_dirty_files"] = [l[3:] for l in porcelain.splitlines() if l.strip()]
     import scipy
     info["versions"] = dict(python=platform.python_version(), numpy=np.__version__, scipy=scipy.__version__,
                             cushion=cushion.__version__)
@@ -771,9 +863,11 @@ def main():
         df.to_csv(f, index=False, float_format="%.10g")
     log(f"wrote {os.path.relpath(csv, ROOT)} ({len(df)} rows)")
 
-    table = {}
+    table, table_trajectory = {}, {}
     for name in args.scenes:
         table[name] = {m: {f"{t:g}": v for t, v in r.items()} for m, r in interpolate(df, name, (1e-6, 1e-9)).items()}
+        table_trajectory[name] = {m: {f"{t:g}": v for t, v in r.items()}
+                                  for m, r in interpolate(df, name, (1e-4, 1e-6), TRAJECTORY).items()}
     if "paper-hydraulic-dt70" in table:
         log("\npaper-hydraulic-dt70, object final speed: time and evaluations at an error of 1e-6 and 1e-9 "
             "(log-log interpolated)")
@@ -785,17 +879,21 @@ def main():
         engine_has_dop853=has_dop853,
         cyrk=CYRK if isinstance(CYRK, str) else "CyRK nbsolve2_ivp with a numba cfunc right-hand side",
         numbalsoda="not used: does not build here (needs a Fortran compiler)",
-        references={n: dict(A=r["A"][0], B=r["B"][0], values_A=r["A"][1], values_B=r["B"][1],
-                            disagreement={m: abs(r["A"][1][m] - r["B"][1][m]) for m in r["A"][1]},
+        references={n: dict(A=r["A"][0], B=r["B"][0],
+                            values_A={m: v for m, v in r["A"][1].items() if m != TRAJECTORY},
+                            values_B={m: v for m, v in r["B"][1].items() if m != TRAJECTORY},
+                            disagreement={m: disagreement(r["A"][1], r["B"][1], m) for m in r["A"][1]},
                             floor=r["floor"]) for n, r in refs.items()},
         at_error=table,
+        at_error_trajectory=table_trajectory,
         wall_seconds=round(time.perf_counter() - t_start, 1),
         load_average_at_end=os.getloadavg(),
     )
     with open(os.path.join(args.out, "work_precision.json"), "w") as f:
         json.dump(info, f, indent=1, default=float)
     if not args.no_charts:
-        charts(df, args.scenes, os.path.join(args.out, "figures"))
+        for measure in CHARTS:
+            charts(df, args.scenes, os.path.join(args.out, "figures"), measure)
     log(f"total {time.perf_counter() - t_start:.0f} s")
 
 
