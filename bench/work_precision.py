@@ -18,8 +18,9 @@ agreement, the interpolated table) and docs/figures/work-precision-{time,evals}.
 Scenes: the five paper scenes (sweeps/scenes/paper-*.toml); `steel-stops` (paper-hydraulic-dt70
 with stops.stiffness = 1e11); `compressible` (paper-hydraulic-dt70 with hydraulic.bulk_modulus =
 1.5e9; explicit methods are not run there: "failed (explicit)"); `oscillator`, a damped linear
-oscillator x'' + 2 zeta w x' + w^2 x = 0 with a closed form (peers only: the engine runs only its
-own scenes).
+oscillator x'' + 2 zeta w x' + w^2 x = 0 with a closed form, which the engine's integrator runs
+alone (`crates/cushion-ode/examples/oscillator.rs`, built by this script: no events, no
+observers, the final state only, timed in-process in Rust).
 
 Error measures: object_final_velocity (m/s), peak_robot_force (N), t_detect (s), and
 trajectory_velocity (m/s: the largest error of the tool's and the object's speeds at 99 fixed
@@ -124,6 +125,27 @@ def osc_exact(t):
 
 def osc_rhs(t, y):
     return [y[1], -2 * OSC_ZETA * OSC_W * y[1] - OSC_W**2 * y[0]]
+
+
+OSC_EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "oscillator")
+
+
+def engine_oscillator(settings):
+    """The integrator alone on the oscillator: {(method, label): result dict} for settings
+    [(method, label, dict(rtol=..) or dict(h=..))], from one run of the Rust example."""
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-ode", "--example", "oscillator"],
+                   cwd=ROOT, check=True)
+    argv = [f"{m}={'h%r' % st['h'] if 'h' in st else repr(st['rtol'])}" for m, _, st in settings]
+    out = subprocess.run([OSC_EXAMPLE, repr(OSC_W), repr(OSC_ZETA), repr(OSC_T), *argv],
+                         capture_output=True, text=True, check=True).stdout.split("\n")
+    res = {}
+    for (m, label, _), line in zip(settings, out):
+        _, _, status, v, secs, evals, repeats = line.split()
+        ok = status == "Success"
+        res[(m, label)] = dict(status="ok" if ok else f"failed: {status}", seconds=float(secs),
+                               rhs_evals=int(evals), repeats=int(repeats),
+                               **({"values": {"object_final_velocity": float(v)}} if ok else {}))
+    return res
 
 
 def log(*a):
@@ -660,7 +682,13 @@ def study(names, args, has_dop853):
     for name in names:
         ref, t_scene = refs[name], time.perf_counter()
         stiff = name == "compressible"
-        if name != "oscillator":
+        if name == "oscillator":
+            settings = [(m, label, st) for m, rtols, steps in ours if m not in VARIANTS
+                        for label, st in ([(f"rtol={sci(r)}", dict(rtol=r)) for r in rtols] if rtols
+                                          else [(f"h={sci(h)}", dict(h=h)) for h in steps])]
+            for (m, label), res in engine_oscillator(settings).items():
+                add(name, m, "cushion", label, res, ref["peers"], ref["floor"])
+        else:
             for method, rtols, steps in ours:
                 settings = ([(f"rtol={sci(r)}", dict(rtol=r, atol=r / 1000)) for r in rtols] if rtols
                             else [(f"h={sci(h)}", dict(h=h)) for h in steps])
@@ -738,6 +766,8 @@ def charts(df, names, outdir, measure="object_final_velocity"):
 
     d = df[(df.error_measure == measure) & (df.status == "ok")]
     names = [n for n in names if (d.scene == n).any()]
+    if not names:
+        return
     files, what, ylabel = CHARTS[measure]
     ncol = 4
     nrow = math.ceil(len(names) / ncol)
@@ -766,7 +796,7 @@ def charts(df, names, outdir, measure="object_final_velocity"):
                         color="#909090", va="bottom")
             ax.set_xscale("log")
             ax.set_yscale("log")
-            title = name + (" (peers only)" if name == "oscillator" else "")
+            title = name + (" (the integrator alone)" if name == "oscillator" else "")
             ax.set_title(title, fontsize=10)
             ax.grid(True, which="major", color="#eeeeee", lw=0.6)
             ax.tick_params(labelsize=8)
