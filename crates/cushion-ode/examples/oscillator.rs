@@ -8,7 +8,9 @@
 //! least 3), with no
 //! events, no observers and the final state only: what the integrator costs on its own.
 
-use std::time::Instant;
+mod support;
+
+use support::wall_time;
 
 use cushion_ode::{solve, Matrix, Method, OdeSystem, Solution, SolverOptions, State, Tolerance};
 
@@ -32,20 +34,6 @@ impl OdeSystem<2> for Oscillator {
             -2.0 * self.zeta * self.w,
         ))
     }
-}
-
-/// Median wall time of `run` over repetitions adding up to about 0.2 s (at least 3), and how
-/// many there were.
-fn wall_time<R>(mut run: impl FnMut() -> R) -> (f64, usize) {
-    let mut samples = Vec::new();
-    let start = Instant::now();
-    while samples.len() < 3 || (start.elapsed().as_secs_f64() < 0.2 && samples.len() < 10_000) {
-        let t = Instant::now();
-        std::hint::black_box(run());
-        samples.push(t.elapsed().as_secs_f64());
-    }
-    samples.sort_by(|a, b| a.total_cmp(b));
-    (samples[samples.len() / 2], samples.len())
 }
 
 fn main() {
@@ -82,7 +70,7 @@ fn main() {
             )
         };
         let sol = run();
-        let (seconds, repeats) = wall_time(run);
+        let (seconds, repeats) = wall_time(0.2, run);
         println!(
             "{name} {setting} {:?} {:.17e} {seconds:.6e} {} {repeats}",
             sol.status, sol.y[1], sol.stats.rhs_evals

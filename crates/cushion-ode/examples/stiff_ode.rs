@@ -14,6 +14,10 @@ use cushion_ode::test_models::hires::{self, Hires};
 use cushion_ode::test_models::orego::{self, Orego};
 use cushion_ode::test_models::robertson::{self, Robertson};
 use cushion_ode::test_models::van_der_pol::{VanDerPol, REFERENCE_EPS_1E6};
+mod support;
+
+use support::wall_time;
+
 use cushion_ode::{
     solve, Method, OdeSystem, Solution, SolverOptions, State, StiffnessAction, Tolerance,
 };
@@ -28,19 +32,6 @@ impl<S: OdeSystem<N>, const N: usize> OdeSystem<N> for NoJacobian<'_, S> {
     fn time_derivative(&self, t: f64, y: &State<N>) -> Option<State<N>> {
         self.0.time_derivative(t, y)
     }
-}
-
-/// Median wall time of `run` over repetitions adding up to about 0.3 s (at least 3).
-fn wall_time<R>(mut run: impl FnMut() -> R) -> f64 {
-    let mut samples = Vec::new();
-    let start = Instant::now();
-    while samples.len() < 3 || (start.elapsed().as_secs_f64() < 0.3 && samples.len() < 1000) {
-        let t = Instant::now();
-        std::hint::black_box(run());
-        samples.push(t.elapsed().as_secs_f64());
-    }
-    samples.sort_by(|a, b| a.total_cmp(b));
-    samples[samples.len() / 2]
 }
 
 struct Problem<'a, S, const N: usize> {
@@ -94,12 +85,12 @@ fn run<S: OdeSystem<N>, const N: usize>(p: Problem<'_, S, N>) {
     let mut sys = p.sys;
     let rodas = opts(Method::Rodas);
     let sol = solve(&mut sys, 0.0, p.y0, p.t_end, &rodas);
-    let wall = wall_time(|| solve(&mut sys, 0.0, p.y0, p.t_end, &rodas).y);
+    let wall = wall_time(0.3, || solve(&mut sys, 0.0, p.y0, p.t_end, &rodas).y).0;
     print_row(p.name, "rodas", &sol, &p.reference, p.rtol, &p.atol, wall);
 
     let mut fd = NoJacobian(&sys);
     let sol = solve(&mut fd, 0.0, p.y0, p.t_end, &rodas);
-    let wall = wall_time(|| solve(&mut fd, 0.0, p.y0, p.t_end, &rodas).y);
+    let wall = wall_time(0.3, || solve(&mut fd, 0.0, p.y0, p.t_end, &rodas).y).0;
     print_row(
         p.name,
         "rodas (FD)",
