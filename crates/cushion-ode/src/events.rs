@@ -177,7 +177,7 @@ impl<const N: usize> EventScan<N> {
         let mut y_mid = None;
         let mut next = f64::INFINITY;
         for (i, (&a, &b)) in self.g[..self.n].iter().zip(g1).enumerate() {
-            let closing = (a > 0.0 && b > 0.0 && b < a) || (a < 0.0 && b < 0.0 && b > a);
+            let closing = clearance(a, b).is_some_and(|_| b.abs() < a.abs());
             // b / (a - b): the chord's zero past t1, in steps of its length
             if !closing || b / (a - b) > FORECAST_REACH {
                 continue;
