@@ -158,11 +158,14 @@ def sci(x):
 
 # ------------------------------------------------------------------------------ the engine
 
-def engine_once(name, method, rtol=None, atol=None, h=None):
+def engine_once(name, method, rtol=None, atol=None, h=None, record=False):
+    """One run of a scene as a function; `record`: with its uniform samples at SAMPLE_INTERVAL."""
     path, over, _, _ = SCENES[name]
     method, extra = VARIANTS.get(method, (method, {}))
     st = dict(over, **extra)
-    kw = dict(method=method, trajectory=False)
+    kw = dict(method=method, trajectory=record)
+    if record:
+        kw["sample_interval"] = SAMPLE_INTERVAL
     if h is not None:
         st["solver.fixed_step"] = h
     else:
@@ -174,15 +177,7 @@ def engine_once(name, method, rtol=None, atol=None, h=None):
 def engine_samples(name, method, setting):
     """The tool's and the object's speeds at SAMPLE_TIMES, (2, 99), from a run that records
     its trajectory (NaN where the scene has no such body); None if a sample time is missing."""
-    path, over, _, _ = SCENES[name]
-    method, extra = VARIANTS.get(method, (method, {}))
-    st = dict(over, **extra)
-    kw = dict(method=method, trajectory=True, sample_interval=SAMPLE_INTERVAL)
-    if setting.get("h") is not None:
-        st["solver.fixed_step"] = setting["h"]
-    else:
-        kw.update(rtol=setting["rtol"], atol=setting["atol"])
-    run = cushion.simulate(os.path.join(ROOT, path), set=st, **kw)
+    run = engine_once(name, method, **setting, record=True)()
     idx = np.searchsorted(run.t, SAMPLE_TIMES)
     if np.any(idx >= run.t.size) or np.any(run.t[np.minimum(idx, run.t.size - 1)] != SAMPLE_TIMES):
         return None
