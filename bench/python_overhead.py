@@ -4,8 +4,8 @@
    The overhead is a fixed cost per call (arguments in, summary out), so it is measured on a
    run that costs almost nothing (`t_end` = 1 µs: one step), where it is not lost in the
    run's own time and this VM's drift: the Rust loop (`loop_scene N t_end=1e-6`, release) and
-   the Python calls, best of ROUNDS each, for the three ways of giving a scene (a few
-   overrides, a full dict of every key, a scene file).
+   the Python calls, best of ROUNDS each, for the four ways of giving a scene (a few
+   overrides, a full dict of every key, a scene file, a `cushion.Scene` made once).
 2. Sweep throughput of `cushion.sweep` against `cushion sweep` on sweeps/design-space.toml
    (16,384 runs), in memory and with `out`, alternated, best of ROUNDS.
 
@@ -53,10 +53,12 @@ def overhead() -> None:
     rust = min(rust_us() for _ in range(ROUNDS))
     full = {**cushion.load_scene(ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"), **TINY}
     scene_file = ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"
+    prepared = cushion.Scene(scene_file, set=TINY)
     forms = {
         "set={a few keys}": lambda: cushion.simulate(set=TINY, trajectory=False),
         "a dict of every key": lambda: cushion.simulate(full, trajectory=False),
         "a scene file": lambda: cushion.simulate(scene_file, set=TINY, trajectory=False),
+        "a cushion.Scene": lambda: cushion.simulate(prepared, trajectory=False),
     }
     print(f"fixed cost per call (t_end = 1 µs, one step): Rust alone {rust:.1f} µs, best of {ROUNDS}")
     print(f"{'scene given as':22} {'python µs':>10} {'overhead µs':>12}")

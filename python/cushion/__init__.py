@@ -15,7 +15,7 @@ Bad input raises :class:`ConfigError` (a :class:`ValueError`) naming the key, th
 what is allowed. A run that fails numerically is not an exception: its ``status`` says so.
 """
 
-from ._cushion import ConfigError, __version__
+from ._cushion import ConfigError, Scene, __version__
 from ._run import Run, read_mcap, simulate
 from ._scene import defaults, keys, load_scene
 from ._sweep import sweep
@@ -23,6 +23,7 @@ from ._sweep import sweep
 __all__ = [
     "ConfigError",
     "Run",
+    "Scene",
     "__version__",
     "defaults",
     "keys",

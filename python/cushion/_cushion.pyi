@@ -1,5 +1,6 @@
 # Type stubs of the compiled module cushion._cushion (crates/cushion-py). Users call the
 # wrappers in cushion/__init__.py; these are the raw functions under them.
+import os
 from typing import Any, Callable
 
 import numpy as np
@@ -15,11 +16,17 @@ Columns = npt.NDArray[np.float64]
 # the event log: times, names, and the state at each event as an (n, 11) array
 Events = tuple[npt.NDArray[np.float64], list[str], npt.NDArray[np.float64]]
 
+class Scene:
+    """A scene read and checked once, to run many times (see cushion.simulate)."""
+
+    def __init__(self, scene: str | os.PathLike[str] | dict[str, Any] | None = None, set: dict[str, Any] | None = None) -> None: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
 def defaults(module: str = "hydraulic") -> dict[str, Any]: ...
 def keys() -> list[tuple[str, Any, str, str]]: ...
 def load_scene(path: str) -> dict[str, Any]: ...
 def simulate(
-    scene: str | dict[str, Any] | None = None,
+    scene: str | dict[str, Any] | Scene | None = None,
     set: dict[str, Any] | None = None,
     rtol: float | None = None,
     atol: float | None = None,

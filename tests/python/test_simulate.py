@@ -148,6 +148,32 @@ def test_defaults_keys_and_load_scene():
     assert same(cushion.simulate(scene).summary, cushion.simulate(ROOT / "sweeps/scenes/paper-bistable-dt10.toml").summary)
 
 
+def test_a_prepared_scene_runs_as_its_file_and_overrides(cli_json):
+    path = ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"
+    scene = cushion.Scene(path, set={"module": "bistable", "robot.dead_time": 0.01})
+    want = cli_json(path, "--set", "module=bistable", "--set", "robot.dead_time=0.01",
+                    "--set", "solver.rtol=1e-8")
+    # reused: each run starts from a copy, and the shorthands do not change the scene
+    for _ in range(2):
+        assert same(cushion.simulate(scene, rtol=1e-8).summary, want)
+    assert scene.to_dict()["solver.rtol"] == 1e-6
+    assert same(cushion.simulate(scene, set={"solver.rtol": 1e-8}).summary, want)
+    # its keys are the file's with the overrides
+    expected = cushion.load_scene(path)
+    expected.update({"module": "bistable", "robot.dead_time": 0.01})
+    assert scene.to_dict() == expected
+    assert "module='bistable'" in repr(scene) and "dead_time=0.01 s" in repr(scene)
+
+
+def test_a_prepared_scene_is_checked_when_made():
+    with pytest.raises(cushion.ConfigError, match=r"robot.dead_time.*-1.*>= 0"):
+        cushion.Scene(set={"robot.dead_time": -1.0})
+    with pytest.raises(cushion.ConfigError, match="scene = 3: expected .*cushion.Scene"):
+        cushion.Scene(3)
+    with pytest.raises(cushion.ConfigError, match="scene = 3: expected .*cushion.Scene"):
+        cushion.simulate(3)
+
+
 def test_two_threads_simulate_at_once():
     from concurrent.futures import ThreadPoolExecutor
 

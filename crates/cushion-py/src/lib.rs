@@ -24,6 +24,7 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
     std::panic::set_hook(Box::new(|_| {}));
     m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<scene::PreparedScene>()?;
     m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;
     m.add_function(wrap_pyfunction!(scene::keys, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;

@@ -1,5 +1,6 @@
-//! Scenes from Python: a path, a dict (sections as sub-dicts, or `"section.key"` names), or
-//! `None` for the defaults; overrides applied after it; the key table.
+//! Scenes from Python: a path, a dict (sections as sub-dicts, or `"section.key"` names),
+//! `None` for the defaults, or a [`PreparedScene`] read and checked once; overrides applied
+//! after it; the key table.
 
 use std::path::Path;
 
@@ -10,13 +11,63 @@ use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 use crate::convert::{from_toml, to_table, to_toml};
 use crate::errors::config_error;
 
-/// The scene a user gave: `None` (the defaults), a path to a scene file, or a dict.
+/// A scene read and checked once, to run many times: ``cushion.Scene(scene=None, set=None)``
+/// takes what :func:`cushion.simulate` takes (a scene file, a dict of scene keys, or None for
+/// the defaults; overrides ``{"section.key": value}`` after it) and raises
+/// :class:`cushion.ConfigError` for bad input at once. Pass it to :func:`cushion.simulate` in
+/// place of the file or dict: a run then starts from a copy of it.
+//
+// (Reading the paper's scene file and parsing its TOML costs about 18 µs, a fifth of its run
+// at rtol 1e-6; a dict of every key, about 6 µs.)
+#[pyclass(name = "Scene", module = "cushion._cushion", frozen)]
+pub struct PreparedScene {
+    pub scene: Scene,
+}
+
+#[pymethods]
+impl PreparedScene {
+    #[new]
+    #[pyo3(signature = (scene=None, set=None))]
+    fn new(scene: Option<&Bound<'_, PyAny>>, set: Option<&Bound<'_, PyDict>>) -> PyResult<Self> {
+        let mut s = scene_from(scene)?;
+        apply_set(&mut s, set)?;
+        s.validate().map_err(config_error)?;
+        Ok(PreparedScene { scene: s })
+    }
+
+    /// Every key and its value, ``{"section.key": value}`` (what :func:`cushion.load_scene`
+    /// returns for a file).
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        flat(py, &self.scene)
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &self.scene;
+        format!(
+            "<cushion.Scene module='{}' t_end={} s dead_time={} s method='{}'>",
+            s.module.name(),
+            s.t_end,
+            s.robot.dead_time,
+            s.solver.method.name()
+        )
+    }
+}
+
+/// The scene a user gave: `None` (the defaults), a path to a scene file, a dict, or a
+/// [`PreparedScene`].
 pub fn scene_from(scene: Option<&Bound<'_, PyAny>>) -> PyResult<Scene> {
     let Some(s) = scene else {
         return Ok(Scene::default());
     };
     if s.is_none() {
         return Ok(Scene::default());
+    }
+    if let Ok(p) = s.cast::<PreparedScene>() {
+        return Ok(p.get().scene.clone());
+    }
+    if s.hasattr("__fspath__")? {
+        let p = s.call_method0("__fspath__")?;
+        return scene_from(Some(&p));
     }
     if let Ok(p) = s.cast::<PyString>() {
         return Scene::from_file(Path::new(p.to_str()?)).map_err(config_error);
@@ -28,7 +79,7 @@ pub fn scene_from(scene: Option<&Bound<'_, PyAny>>) -> PyResult<Scene> {
         return Ok(scene);
     }
     Err(config_error(format!(
-        "scene = {}: expected a path to a scene file (TOML), a dict of scene keys, or None",
+        "scene = {}: expected a path to a scene file (TOML), a dict of scene keys, a cushion.Scene, or None",
         s.repr()?
     )))
 }
