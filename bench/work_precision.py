@@ -33,9 +33,11 @@ against the reference of its own model (the engine's runs against the engine's, 
 model's against SciPy's), and an error is marked `resolved` only if it exceeds ten times the
 references' disagreement (the charts drop unresolved points and draw that floor).
 
-Work: wall time per run, the median of repeats (the engine: in-process
-`cushion.simulate(..., trajectory=False)` calls, nothing subtracted; SciPy: the whole solve of
-all segments, dense output on for solve_ivp, peaks not included); right-hand-side evaluations
+Work: wall time per run, the median of repeats over about 0.2 s (at most 2,000; a peer run over
+1 s once), ours and the peers' alike (the engine: in-process `cushion.simulate(scene,
+trajectory=False)` calls from a `cushion.Scene` made before the clock starts, as the peers'
+scenes are, nothing subtracted; SciPy: the whole solve of all segments, dense output on for
+solve_ivp, peaks not included); right-hand-side evaluations
 (`stats["rhs_evals"]`; the peers: every call of the right-hand side, finite-difference Jacobians
 and event location included).
 
@@ -191,8 +193,15 @@ def trajectory_error(samples, ref):
     return float(np.nanmax(d)) if np.isfinite(d).any() else float("nan")
 
 
+def repeats(first_seconds, target, lo, hi):
+    """How many runs to time: about `target` seconds of them, within [lo, hi]. A run of 100 µs
+    is timed over ~0.2 s, not a few ms: this VM's speed wanders, and a short burst of runs
+    catches a slow moment whole."""
+    return int(min(hi, max(lo, target / max(first_seconds, 1e-9))))
+
+
 def timed(fn, first_seconds, target, lo, hi):
-    n = int(min(hi, max(lo, target / max(first_seconds, 1e-9))))
+    n = repeats(first_seconds, target, lo, hi)
     ts = []
     for _ in range(n):
         t0 = time.perf_counter()
@@ -213,7 +222,7 @@ def engine_point(name, method, setting, args):
     s = run.summary
     if s["status"] != "ok":
         return dict(status=f"failed: {s['status']}", rhs_evals=s["stats"]["rhs_evals"], seconds=first)
-    secs, n = timed(fn, first, args.engine_target, args.engine_min, args.engine_max)
+    secs, n = timed(fn, first, args.target, args.engine_min, args.most)
     values = {m: s[m] for m in MEASURES}
     samples = engine_samples(name, method, setting)
     if samples is not None:
@@ -559,7 +568,7 @@ def peer_point(name, method, rtol, args):
             r["status"] = "failed: non-finite result"
         if r["status"] != "ok":
             return r
-        n = 1 if r["seconds"] > args.peer_slow else args.peer_repeats
+        n = 1 if r["seconds"] > args.peer_slow else repeats(r["seconds"], args.target, args.peer_min, args.most)
         secs = [r["seconds"]] + [fn()["seconds"] for _ in range(n - 1)]
     r["seconds"], r["repeats"] = float(np.median(secs)), len(secs)
     return r
@@ -869,8 +878,10 @@ def main():
     args = ap.parse_args()
     args.budget = args.budget or (5.0 if args.quick else 30.0)
     args.ref_budget = 300.0
-    args.engine_target, args.engine_min, args.engine_max = (0.05, 1, 3) if args.quick else (0.3, 5, 41)
-    args.peer_repeats, args.peer_slow = (1, 0.0) if args.quick else (3, 1.0)
+    # each setting's runs, ours and the peers' alike, timed over about `target` seconds
+    # (at most `most` runs; a peer run over `peer_slow` seconds once): the median
+    args.target, args.most = (0.05, 3) if args.quick else (0.2, 2000)
+    args.engine_min, args.peer_min, args.peer_slow = (1, 1, 0.0) if args.quick else (5, 3, 1.0)
 
     import pandas as pd
     t_start = time.perf_counter()
