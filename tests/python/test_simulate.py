@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -163,6 +164,10 @@ def test_a_prepared_scene_runs_as_its_file_and_overrides(cli_json):
     expected.update({"module": "bistable", "robot.dead_time": 0.01})
     assert scene.to_dict() == expected
     assert "module='bistable'" in repr(scene) and "dead_time=0.01 s" in repr(scene)
+    # pickled as its keys (for another process), the same runs
+    again = pickle.loads(pickle.dumps(scene))
+    assert again.to_dict() == expected
+    assert same(cushion.simulate(again, rtol=1e-8).summary, want)
 
 
 def test_a_prepared_scene_is_checked_when_made():

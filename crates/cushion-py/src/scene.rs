@@ -41,6 +41,15 @@ impl PreparedScene {
         flat(py, &self.scene)
     }
 
+    /// Pickled as its keys, so that a scene can go to another process (multiprocessing, a Dask
+    /// worker) and be checked again there.
+    fn __reduce__<'py>(
+        slf: &Bound<'py, Self>,
+    ) -> PyResult<(Bound<'py, PyAny>, (Bound<'py, PyDict>,))> {
+        let d = flat(slf.py(), &slf.get().scene)?;
+        Ok((slf.get_type().into_any(), (d,)))
+    }
+
     fn __repr__(&self) -> String {
         let s = &self.scene;
         format!(
