@@ -10,6 +10,8 @@
 //! on its stop (`resting.rs`; [`TailKind::Riding`]). Failing that, the run may end once only the
 //! tool's small ringing on its stop is left (`ringing_tail.rs`; [`TailKind::Ringing`]).
 
+use std::cell::OnceCell;
+
 use crate::model::Model;
 use crate::observe::peak_sampler::Peaks;
 use crate::physics::Phase;
@@ -79,24 +81,18 @@ impl EarlyEnd {
                 return ringing(self);
             }
         }
-        let e = m.eval(t, y, &seg, &m.regime);
-        // (for a cruising robot, the object was found out of reach above)
-        let object_done = !stopped
-            || match m.layout.object {
-                None => true,
-                Some(_) => {
-                    if m.p.mu_n > 0.0 {
-                        m.regime.obj_stuck
-                    } else {
-                        e.v_p >= e.v_t.max(0.0)
-                    }
-                }
-            };
+        // the physics at (t, y), computed once, and only where a test needs it: a tool still
+        // bouncing on its stop under a standing robot fails the settling test on its speed,
+        // which the state gives (`e.sd` is this same difference)
+        let physics = OnceCell::new();
+        let e = || *physics.get_or_init(|| m.eval(t, y, &seg, &m.regime));
         let settled = match m.layout.tool {
             None if stopped => Some(TailKind::Settled),
             None => Some(TailKind::Riding { stroke: None }),
-            Some(_) if stopped => (m.regime.tool_stuck
-                || (e.sd.abs() <= self.settle_v && e.a_t.abs() <= self.settle_a))
+            Some(i) if stopped => (m.regime.tool_stuck
+                || ((seg.at(t).1 - y[i + 1]).abs() <= self.settle_v
+                    && e().sd.abs() <= self.settle_v
+                    && e().a_t.abs() <= self.settle_a))
                 .then_some(TailKind::Settled),
             // the robot cruises on: stuck (short of the sensor, or it would have switched; and
             // no compressible liquid still flowing through the orifice), or at rest on a stop
@@ -107,11 +103,23 @@ impl EarlyEnd {
                 .then_some(TailKind::Riding { stroke: None }),
             Some(_) => self
                 .stop
-                .rest_on_stop(m, t, y, &seg, &e)
+                .rest_on_stop(m, t, y, &seg, &e())
                 .map(|s| TailKind::Riding { stroke: Some(s) }),
         };
+        // (for a cruising robot, the object was found out of reach above)
+        let object_done = || {
+            !stopped
+                || match m.layout.object {
+                    None => true,
+                    Some(_) if m.p.mu_n > 0.0 => m.regime.obj_stuck,
+                    Some(_) => {
+                        let e = e();
+                        e.v_p >= e.v_t.max(0.0)
+                    }
+                }
+        };
         match settled {
-            Some(kind) if object_done => Some(kind),
+            Some(kind) if object_done() => Some(kind),
             _ => ringing(self),
         }
     }
