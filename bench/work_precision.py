@@ -33,8 +33,10 @@ against the reference of its own model (the engine's runs against the engine's, 
 model's against SciPy's), and an error is marked `resolved` only if it exceeds ten times the
 references' disagreement (the charts drop unresolved points and draw that floor).
 
-Work: wall time per run, the median of repeats over about 0.2 s (at most 2,000; a peer run over
-1 s once), ours and the peers' alike (the engine: in-process `cushion.simulate(scene,
+Work: wall time per run, ours and the peers' alike, from about 0.2 s of repeats (at most 2,000;
+a peer run over 1 s is timed once) in five interleaved rounds over all of a scene's settings:
+the smallest of the rounds' medians (`time_interleaved`: this VM's speed wanders over seconds
+to minutes, and only ever slows a run down) (the engine: in-process `cushion.simulate(scene,
 trajectory=False)` calls from a `cushion.Scene` made before the clock starts, as the peers'
 scenes are, nothing subtracted; SciPy: the whole solve of all segments, dense output on for
 solve_ivp, peaks not included); right-hand-side evaluations
@@ -194,24 +196,43 @@ def trajectory_error(samples, ref):
 
 
 def repeats(first_seconds, target, lo, hi):
-    """How many runs to time: about `target` seconds of them, within [lo, hi]. A run of 100 µs
-    is timed over ~0.2 s, not a few ms: this VM's speed wanders, and a short burst of runs
-    catches a slow moment whole."""
+    """How many runs to time: about `target` seconds of them, within [lo, hi]."""
     return int(min(hi, max(lo, target / max(first_seconds, 1e-9))))
 
 
-def timed(fn, first_seconds, target, lo, hi):
-    n = repeats(first_seconds, target, lo, hi)
-    ts = []
-    for _ in range(n):
-        t0 = time.perf_counter()
-        fn()
-        ts.append(time.perf_counter() - t0)
-    return float(np.median(ts)), n
+def time_interleaved(points, args):
+    """Time every point of one scene, ours and the peers' alike, in `args.rounds` interleaved
+    rounds: each round visits the points in a new (seeded) order and times each over about
+    `target / rounds` seconds; a point's time is the smallest of its rounds' medians. This VM's
+    speed wanders by a fifth to a half over seconds to minutes (the same run, instruction for
+    instruction, takes 160 to 250 µs from one second to the next), so settings timed back to
+    back would compare different machine states, and a slow minute would fall whole on one
+    method; interleaved, every point meets the quiet moments too, and since a disturbance only
+    ever slows a run, the quietest round is the fairest estimate of each. `points`: result dicts
+    whose `_timer()` runs once and returns its seconds and `_first` the first run's; each gets
+    `seconds` and `repeats` (the runs timed, all rounds)."""
+    import random
+    timed_points = [p for p in points if p.get("_timer") is not None]
+    for p in timed_points:
+        p["_medians"], p["repeats"] = [], 0
+    per_round, most = args.target / args.rounds, max(1, args.most // args.rounds)
+    for k in range(args.rounds):
+        order = list(timed_points)
+        random.Random(k).shuffle(order)
+        for p in order:
+            n = repeats(p["_first"], per_round, 1, most)
+            p["_medians"].append(float(np.median([p["_timer"]() for _ in range(n)])))
+            p["repeats"] += n
+    for p in points:
+        if p.get("_timer") is not None:
+            p["seconds"] = min(p["_medians"])
+        for key in ("_timer", "_first", "_medians"):
+            p.pop(key, None)
 
 
 def engine_point(name, method, setting, args):
-    """One engine setting: dict(status, values, seconds, rhs_evals, repeats)."""
+    """One engine setting: dict(status, values, seconds, rhs_evals, repeats), with its timer
+    for `time_interleaved`."""
     try:
         fn = engine_once(name, method, **setting)
         t0 = time.perf_counter()
@@ -222,12 +243,18 @@ def engine_point(name, method, setting, args):
     s = run.summary
     if s["status"] != "ok":
         return dict(status=f"failed: {s['status']}", rhs_evals=s["stats"]["rhs_evals"], seconds=first)
-    secs, n = timed(fn, first, args.target, args.engine_min, args.most)
     values = {m: s[m] for m in MEASURES}
     samples = engine_samples(name, method, setting)
     if samples is not None:
         values[TRAJECTORY] = samples
-    return dict(status="ok", values=values, seconds=secs, rhs_evals=s["stats"]["rhs_evals"], repeats=n)
+
+    def timer():
+        t0 = time.perf_counter()
+        fn()
+        return time.perf_counter() - t0
+
+    return dict(status="ok", values=values, seconds=first, rhs_evals=s["stats"]["rhs_evals"], repeats=1,
+                _timer=timer, _first=first)
 
 
 def engine_has_dop853():
@@ -547,7 +574,8 @@ def cyrk_once(name, method, rtol, atol, budget):
 
 
 def peer_point(name, method, rtol, args):
-    """One peer run, then repeats if it was quick: dict like engine_point's."""
+    """One peer run: dict like engine_point's (with a timer unless the run took over
+    `peer_slow` seconds)."""
     atol = rtol / 1000.0
     budget = args.budget
     if method.startswith("hairer-"):
@@ -568,9 +596,15 @@ def peer_point(name, method, rtol, args):
             r["status"] = "failed: non-finite result"
         if r["status"] != "ok":
             return r
-        n = 1 if r["seconds"] > args.peer_slow else repeats(r["seconds"], args.target, args.peer_min, args.most)
-        secs = [r["seconds"]] + [fn()["seconds"] for _ in range(n - 1)]
-    r["seconds"], r["repeats"] = float(np.median(secs)), len(secs)
+    r["repeats"] = 1
+    if r["seconds"] <= args.peer_slow:  # a slower run is timed once, here
+
+        def timer():
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                return fn()["seconds"]
+
+        r["_timer"], r["_first"] = timer, r["seconds"]
     return r
 
 
@@ -687,6 +721,7 @@ def study(names, args, has_dop853):
     for name in names:
         ref, t_scene = refs[name], time.perf_counter()
         stiff = name == "compressible"
+        points = []  # (method, family, setting, result), added once timed
         if name == "oscillator":
             settings = [(m, label, st) for m, rtols, steps in ours if m not in VARIANTS
                         for label, st in ([(f"rtol={sci(r)}", dict(rtol=r)) for r in rtols] if rtols
@@ -702,7 +737,7 @@ def study(names, args, has_dop853):
                         res = dict(status="failed (explicit, not run)")
                     else:
                         res = engine_point(name, method, st, args)
-                    add(name, method, "cushion", label, res, ref["engine"], ref["floor"])
+                    points.append((method, "cushion", label, res))
         if name == "oscillator" or SCENES[name][2] is not None:
             for method in peers:
                 dead = None
@@ -716,8 +751,11 @@ def study(names, args, has_dop853):
                         res = peer_point(name, method, r, args)
                         if "time limit" in res["status"]:  # tighter settings would take longer still
                             dead = res["status"]
-                    add(name, method, "peer", label, res, ref["peers"], ref["floor"])
+                    points.append((method, "peer", label, res))
                 log(f"  {name} {method}: done")
+        time_interleaved([res for *_, res in points], args)
+        for method, family, label, res in points:
+            add(name, method, family, label, res, ref["engine" if family == "cushion" else "peers"], ref["floor"])
         log(f"{name}: {time.perf_counter() - t_scene:.1f} s")
     return rows, refs
 
@@ -878,10 +916,11 @@ def main():
     args = ap.parse_args()
     args.budget = args.budget or (5.0 if args.quick else 30.0)
     args.ref_budget = 300.0
-    # each setting's runs, ours and the peers' alike, timed over about `target` seconds
-    # (at most `most` runs; a peer run over `peer_slow` seconds once): the median
-    args.target, args.most = (0.05, 3) if args.quick else (0.2, 2000)
-    args.engine_min, args.peer_min, args.peer_slow = (1, 1, 0.0) if args.quick else (5, 3, 1.0)
+    # each setting's runs, ours and the peers' alike, timed over about `target` seconds in all
+    # (at most `most` runs), in `rounds` interleaved rounds (`time_interleaved`); a peer run
+    # over `peer_slow` seconds is timed once
+    args.target, args.most, args.rounds = (0.05, 3, 1) if args.quick else (0.2, 2000, 5)
+    args.peer_slow = 0.0 if args.quick else 1.0
 
     import pandas as pd
     t_start = time.perf_counter()
