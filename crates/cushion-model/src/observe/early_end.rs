@@ -82,8 +82,8 @@ impl EarlyEnd {
             }
         }
         // the physics at (t, y), computed once, and only where a test needs it: a tool still
-        // bouncing on its stop under a standing robot fails the settling test on its speed,
-        // which the state gives (`e.sd` is this same difference)
+        // bouncing on its stop under a standing robot fails the settling test on its speed
+        // relative to the robot, `sd = v_r - v_t`, which the state gives as `Eval` does
         let physics = OnceCell::new();
         let e = || *physics.get_or_init(|| m.eval(t, y, &seg, &m.regime));
         let settled = match m.layout.tool {
@@ -91,7 +91,6 @@ impl EarlyEnd {
             None => Some(TailKind::Riding { stroke: None }),
             Some(i) if stopped => (m.regime.tool_stuck
                 || ((seg.at(t).1 - y[i + 1]).abs() <= self.settle_v
-                    && e().sd.abs() <= self.settle_v
                     && e().a_t.abs() <= self.settle_a))
                 .then_some(TailKind::Settled),
             // the robot cruises on: stuck (short of the sensor, or it would have switched; and
