@@ -6,7 +6,7 @@ engine's methods and for peers, on the paper's scenes, two stiff variants and a 
     bash bench/setup_venv.sh                       # or: python3 -m venv .venv && .venv/bin/pip install numpy scipy
     .venv/bin/pip install "maturin>=1.5,<2" pandas matplotlib pyarrow numba cyrk
     .venv/bin/maturin develop --release            # builds crates/cushion-py into .venv (minutes)
-    # the study (about 4 min on 2 cores, 1 min of it compiling CyRK; --quick: a smoke run of under a minute)
+    # the study (about 9 min on the 2-vCPU Intel VM, 1 min of it compiling CyRK; --quick: a smoke run of under a minute)
     .venv/bin/python bench/work_precision.py [--quick] [--scenes NAME...] [--no-charts]
 
 Needs numpy, scipy, pandas, matplotlib and the `cushion` package; `numba` and `CyRK` for the
