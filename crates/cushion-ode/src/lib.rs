@@ -37,6 +37,7 @@ pub mod jacobian;
 mod lu;
 mod norm;
 pub mod options;
+mod restart_steps;
 pub mod rodas;
 pub mod solution;
 mod solve;

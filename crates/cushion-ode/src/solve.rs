@@ -9,6 +9,7 @@ use crate::dopri5::Dopri5;
 use crate::events::EventScan;
 use crate::norm::Weights;
 use crate::options::{Method, Output, SolverOptions, StiffnessAction};
+use crate::restart_steps::RestartSteps;
 use crate::rodas::Rodas;
 use crate::solution::{Solution, Stats, Status};
 use crate::stepper::{Attempt, Counted, ExplicitRk, StepFailure, Stepper};
@@ -87,6 +88,8 @@ struct Integration<'a, S, const N: usize> {
     /// No step accepted since the last restart (an event or a time stop that changed the
     /// regime). Not at the run's start: a smooth problem starts smooth.
     fresh: bool,
+    /// The first step accepted after each event that restarted the run (`restart_steps.rs`).
+    restart_steps: RestartSteps,
 }
 
 impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
@@ -117,6 +120,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             ys: Vec::new(),
             next_output: 0,
             fresh: false,
+            restart_steps: RestartSteps::new(),
         }
     }
 
@@ -323,6 +327,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 }
                 self.sys.on_switch(t_new, &y_new, switch.to);
                 controller = stepper.controller(self.opts);
+                // the first steps learned belong to the method that took them
+                self.restart_steps = RestartSteps::new();
                 h_new = h_new.min(switch.h_max);
             }
             self.t = t_new;
@@ -341,9 +347,14 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                         format!("f is not finite after the event at t = {t_new}"),
                     );
                 }
+                let event = self.events.log.last().map(|e| (e.index, e.rising));
+                let learned = self.restart_steps.restart(event);
                 if adaptive {
                     controller.reset();
-                    h = self.select_step(stepper.order(), h_max).min(h_new.max(h));
+                    h = match learned {
+                        Some(h_event) => h_event.min(h_max),
+                        None => self.select_step(stepper.order(), h_max).min(h_new.max(h)),
+                    };
                 }
                 continue;
             }
@@ -399,10 +410,12 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     self.stats.failed_solves += 1;
                 }
                 stepper.rejected();
+                self.restart_steps.rejected(h);
                 return Tried::Retry(controller.after_failure(h, failure));
             }
         };
         let mut h_new = h;
+        let mut err_norm = None;
         if let Some(err) = &attempt.err {
             let en = match &attempt.err_low {
                 None => self.weights.error_norm(err, &y, &attempt.y1),
@@ -415,12 +428,15 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             if !accepted {
                 self.stats.rejected += 1;
                 stepper.rejected();
+                self.restart_steps.rejected(h);
                 return Tried::Retry(hn);
             }
             h_new = hn;
+            err_norm = Some(en);
         }
         self.stats.steps += 1;
         self.fresh = false;
+        self.restart_steps.accepted(h, err_norm, stepper.order());
         // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
         let counted = Counted::new(&*self.sys);
         let completed = stepper.complete(&counted, t, &y, h, &mut attempt);

@@ -1,0 +1,92 @@
+//! The first step after an event that restarted the integration.
+//!
+//! After a restart the loop takes the smaller of Hairer's initial step, from the slopes at the
+//! restart point, and the last step before it. Leaving a stiff contact that caps the first
+//! step in free flight at a contact step, a hundred times too short, and the controller's
+//! largest growth (10 a step) then takes two or three short steps to reach the flight's size.
+//! Where the same event recurs, as when a tool bounces on a steel stop 150 times, the first
+//! step after it the last time says how long it may be: its size grown as its own error allows
+//! (as the controller grows a step), kept below half the smallest first attempt ever rejected
+//! after that event, so that a guess that failed is not tried again each time.
+//!
+//! Only an event whose first step was accepted at the first attempt is learned. Where it was
+//! rejected, the event is a discontinuity the error estimate does not see well: a Hertzian
+//! contact that has just begun, whose force grows like `delta^1.5` from zero, leaves a local
+//! error of order `h^2.5` that the embedded estimate understates. There the step that passed
+//! the estimate after the last onset, tried first at the next one, lets the rebound speed drift
+//! by 3e-5 a bounce where the rejected attempt and its retry (`retry_after_discontinuity`) keep
+//! it at 3e-7; such an event starts from Hairer's selection each time.
+//!
+//! Guarded by `tests/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
+
+use crate::system::MAX_EVENTS;
+
+/// The largest growth from the first step after an event to the first step tried after it the
+/// next time: the controller's largest step-to-step growth (DOPRI5's).
+const MAX_GROWTH: f64 = 10.0;
+
+/// A first step after an event is kept to this share of the smallest first attempt rejected
+/// after it.
+const BELOW_REJECTED: f64 = 0.5;
+
+/// Per event function and direction (index `rising as usize`): the first step to try after it,
+/// and the smallest first attempt rejected after it.
+pub(crate) struct RestartSteps {
+    next_first: [[f64; 2]; MAX_EVENTS],
+    rejected_first: [[f64; 2]; MAX_EVENTS],
+    /// The event the current restart followed, until a step is accepted.
+    learning: Option<(usize, bool)>,
+    /// An attempt since that restart was rejected.
+    rejected: bool,
+}
+
+impl RestartSteps {
+    pub(crate) fn new() -> Self {
+        RestartSteps {
+            next_first: [[f64::NAN; 2]; MAX_EVENTS],
+            rejected_first: [[f64::INFINITY; 2]; MAX_EVENTS],
+            learning: None,
+            rejected: false,
+        }
+    }
+
+    /// A restart after the event `index` (`rising` or falling through zero). Returns the step
+    /// to try first, if the same event restarted the run before.
+    pub(crate) fn restart(&mut self, event: Option<(usize, bool)>) -> Option<f64> {
+        self.learning = event.filter(|&(i, _)| i < MAX_EVENTS);
+        self.rejected = false;
+        let (i, rising) = self.learning?;
+        let h = self.next_first[i][rising as usize];
+        h.is_finite().then_some(h)
+    }
+
+    /// An attempt of size `h` was rejected.
+    pub(crate) fn rejected(&mut self, h: f64) {
+        if let Some((i, rising)) = self.learning {
+            if !self.rejected {
+                let r = &mut self.rejected_first[i][rising as usize];
+                *r = r.min(h);
+            }
+            self.rejected = true;
+        }
+    }
+
+    /// A step of size `h` was accepted with the scaled error `err` (`None`: not estimated).
+    /// If it is the first since the restart after an event: the step to try first after that
+    /// event the next time, if the first attempt since the restart was accepted; else none
+    /// (Hairer's selection again).
+    pub(crate) fn accepted(&mut self, h: f64, err: Option<f64>, order: u32) {
+        let Some((i, rising)) = self.learning.take() else {
+            return;
+        };
+        let k = rising as usize;
+        if self.rejected {
+            self.next_first[i][k] = f64::NAN;
+            return;
+        }
+        let growth = err.map_or(1.0, |e| (0.9 / e).powf(1.0 / order as f64).min(MAX_GROWTH));
+        // (NaN growth, from err = NaN, keeps h); never below the size just accepted
+        let next = h * growth.max(1.0);
+        self.next_first[i][k] = next.min(BELOW_REJECTED * self.rejected_first[i][k]).max(h);
+    }
+}
