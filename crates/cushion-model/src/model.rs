@@ -62,6 +62,31 @@ pub struct Layout {
     pub liquid: Option<usize>,
     /// Energy stored by compressing the liquid (ledger, with `liquid`).
     pub e_liquid: Option<usize>,
+    /// What each state's derivative is, by state (`Rate` as `u8`; the right-hand side gathers
+    /// them in one pass instead of testing each part of the layout on every evaluation).
+    pub rates: [u8; MAX_STATES],
+}
+
+/// The derivative of a state, as an index into the right-hand side's list of rates
+/// (`model/ode_system.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub(crate) enum Rate {
+    ToolSpeed,
+    ToolAcceleration,
+    ChamberPressureRate,
+    Flow,
+    ObjectSpeed,
+    ObjectAcceleration,
+    RobotPower,
+    OrificePower,
+    FrictionPower,
+    ContactDampingPower,
+    PlanePower,
+    LiquidPower,
+    ContactForce,
+    /// No state (the single placeholder of a scene with none).
+    Zero,
 }
 
 impl Layout {
@@ -108,6 +133,25 @@ impl Layout {
             l.contact_impulse = take(1);
         }
         l.n = n;
+        l.rates = [Rate::Zero as u8; MAX_STATES];
+        let mut set = |at: Option<usize>, rate: Rate| {
+            if let Some(i) = at {
+                l.rates[i] = rate as u8;
+            }
+        };
+        set(l.tool, Rate::ToolSpeed);
+        set(l.tool.map(|i| i + 1), Rate::ToolAcceleration);
+        set(l.liquid, Rate::ChamberPressureRate);
+        set(l.liquid.map(|i| i + 1), Rate::Flow);
+        set(l.object, Rate::ObjectSpeed);
+        set(l.object.map(|i| i + 1), Rate::ObjectAcceleration);
+        set(l.work, Rate::RobotPower);
+        set(l.d_orifice, Rate::OrificePower);
+        set(l.d_friction, Rate::FrictionPower);
+        set(l.d_contact, Rate::ContactDampingPower);
+        set(l.d_plane, Rate::PlanePower);
+        set(l.e_liquid, Rate::LiquidPower);
+        set(l.contact_impulse, Rate::ContactForce);
         l
     }
 }

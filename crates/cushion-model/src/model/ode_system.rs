@@ -9,42 +9,15 @@ impl<const N: usize> OdeSystem<N> for Model {
     #[inline]
     fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
         let e = self.eval_inline(t, y.as_slice(), self.robot.current(), &self.regime);
-        let l = &self.layout;
-        let mut dy = State::<N>::zeros();
-        if let Some(i) = l.tool {
-            dy[i] = e.v_t;
-            dy[i + 1] = e.a_t;
-        }
-        if let Some(j) = l.object {
-            dy[j] = if self.regime.obj_stuck { 0.0 } else { e.v_p };
-            dy[j + 1] = e.a_p;
-        }
-        if let Some(k) = l.work {
-            dy[k] = e.p_work;
-        }
-        if let Some(k) = l.d_orifice {
-            dy[k] = e.p_orifice;
-        }
-        if let Some(k) = l.d_friction {
-            dy[k] = e.p_friction;
-        }
-        if let Some(k) = l.d_contact {
-            dy[k] = e.p_contact;
-        }
-        if let Some(k) = l.d_plane {
-            dy[k] = e.p_plane;
-        }
-        if let Some(k) = l.contact_impulse {
-            dy[k] = e.f_c;
-        }
-        if let Some(q) = l.liquid {
-            dy[q] = e.dp_m;
-            dy[q + 1] = e.flow;
-        }
-        if let Some(k) = l.e_liquid {
-            dy[k] = e.p_liquid;
-        }
-        dy
+        let v_p = if self.regime.obj_stuck { 0.0 } else { e.v_p };
+        // In the order of `Rate` (`Zero` and the padding to 16, so that an index needs no bounds
+        // check, are zeros).
+        let rates = [
+            e.v_t, e.a_t, e.dp_m, e.flow, v_p, e.a_p, e.p_work, e.p_orifice, e.p_friction,
+            e.p_contact, e.p_plane, e.p_liquid, e.f_c, 0.0, 0.0, 0.0,
+        ];
+        let of = &self.layout.rates;
+        State::<N>::from_fn(|j, _| rates[usize::from(of[j] & 15)])
     }
 
     fn jacobian(&self, t: f64, y: &State<N>) -> Option<Matrix<N>> {
