@@ -192,6 +192,26 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
         }
     }
 
+    #[inline]
+    fn step_into<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
+        (self.t, self.y, self.h) = (t, *y, h);
+        if self.stiff {
+            self.implicit.step_into(sys, t, y, f0, h, out)
+        } else {
+            self.explicit.step_into(sys, t, y, f0, h, out)?;
+            self.h_lambda = self.explicit.stiffness_estimate(h, out);
+            Ok(())
+        }
+    }
+
     fn dense(
         &self,
         t: f64,

@@ -120,6 +120,21 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         f0: &State<N>,
         h: f64,
     ) -> Result<Attempt<N>, StepFailure> {
+        let mut a = Attempt::empty();
+        self.step_into(sys, t, y, f0, h, &mut a)?;
+        Ok(a)
+    }
+
+    #[inline]
+    fn step_into<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
         let k = &mut self.k;
         k[0] = *f0;
         k[1] = sys.rhs(t + C2 * h, &stage_input(y, h, [(A21, &k[0])]));
@@ -248,12 +263,11 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
             (ER11, &k[10]),
             (ER12, &k[11]),
         ]) * h;
-        Ok(Attempt {
-            y1,
-            f1: None,
-            err: Some(err5),
-            err_low: Some(err3),
-        })
+        out.y1 = y1;
+        out.f1 = None;
+        out.err = Some(err5);
+        out.err_low = Some(err3);
+        Ok(())
     }
 
     /// `f(y1)`, the next step's first stage, and the continuous extension's three stages.

@@ -144,6 +144,21 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         f0: &State<N>,
         h: f64,
     ) -> Result<Attempt<N>, StepFailure> {
+        let mut a = Attempt::empty();
+        self.step_into(sys, t, y, f0, h, &mut a)?;
+        Ok(a)
+    }
+
+    #[inline]
+    fn step_into<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
         let k1 = f0;
         let k2 = sys.rhs(t + C2 * h, &add_scaled(y, h, [(A21, k1)]));
         let k3 = sys.rhs(t + C3 * h, &add_scaled(y, h, [(A31, k1), (A32, &k2)]));
@@ -177,12 +192,11 @@ impl<const N: usize> Stepper<N> for Dopri5<N> {
         );
         self.k = [k2, k3, k4, k5, k6];
         self.stage6_input = y6;
-        Ok(Attempt {
-            y1,
-            f1: Some(f1),
-            err: Some(err),
-            err_low: None,
-        })
+        out.y1 = y1;
+        out.f1 = Some(f1);
+        out.err = Some(err);
+        out.err_low = None;
+        Ok(())
     }
 
     fn dense(

@@ -61,8 +61,9 @@ fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
 
 /// What became of one attempted step.
 enum Tried<const N: usize> {
-    /// Accepted (and completed), with the step size the controller proposes next.
-    Accepted(Attempt<N>, f64),
+    /// Accepted (and completed; the attempt is where the loop keeps it), with the step size
+    /// the controller proposes next.
+    Accepted(f64),
     /// Rejected, or failed before its error estimate: try again with this size.
     Retry(f64),
     /// The run ends here.
@@ -226,6 +227,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         };
         let mut ctl = Control::new();
         let mut limited_streak = 0;
+        // Every attempt is written here in place (`Stepper::step_into`).
+        let mut attempt = Attempt::<N>::empty();
 
         loop {
             if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
@@ -270,8 +273,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
 
             let (t, y, f0) = (self.t, self.y, self.f);
-            let (attempt, mut h_new) = match self.attempt(stepper, &mut controller, adaptive, h) {
-                Tried::Accepted(attempt, h_new) => (attempt, h_new),
+            let mut h_new = match self.attempt(stepper, &mut controller, adaptive, h, &mut attempt)
+            {
+                Tried::Accepted(h_new) => h_new,
                 Tried::Retry(h_retry) => {
                     h = h_retry;
                     continue;
@@ -384,36 +388,35 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         controller: &mut M::Controller,
         adaptive: bool,
         h: f64,
+        attempt: &mut Attempt<N>,
     ) -> Tried<N> {
         let (t, y, f0) = (self.t, self.y, self.f);
         let counted = Counted::new(&*self.sys);
-        let outcome = stepper.step(&counted, t, &y, &f0, h);
+        let outcome = stepper.step_into(&counted, t, &y, &f0, h, attempt);
         self.stats.rhs_evals += counted.evals();
-        let mut attempt = match outcome {
-            Ok(a) if is_finite(&a) => a,
-            failed => {
-                let failure = match failed {
-                    Err(failure) => failure,
-                    Ok(_) => StepFailure::NonFinite,
-                };
-                if !adaptive {
-                    let msg = match failure {
-                        StepFailure::NonFinite => {
-                            format!("non-finite state in the step from t = {t} (fixed step {h:e})")
-                        }
-                        other => format!("{other} in the step from t = {t} (fixed step {h:e})"),
-                    };
-                    return Tried::End(Status::NonFinite, msg);
-                }
-                self.stats.rejected += 1;
-                if failure != StepFailure::NonFinite {
-                    self.stats.failed_solves += 1;
-                }
-                stepper.rejected();
-                self.restart_steps.rejected(h);
-                return Tried::Retry(controller.after_failure(h, failure));
-            }
+        let failed = match outcome {
+            Ok(()) if is_finite(attempt) => None,
+            Ok(()) => Some(StepFailure::NonFinite),
+            Err(failure) => Some(failure),
         };
+        if let Some(failure) = failed {
+            if !adaptive {
+                let msg = match failure {
+                    StepFailure::NonFinite => {
+                        format!("non-finite state in the step from t = {t} (fixed step {h:e})")
+                    }
+                    other => format!("{other} in the step from t = {t} (fixed step {h:e})"),
+                };
+                return Tried::End(Status::NonFinite, msg);
+            }
+            self.stats.rejected += 1;
+            if failure != StepFailure::NonFinite {
+                self.stats.failed_solves += 1;
+            }
+            stepper.rejected();
+            self.restart_steps.rejected(h);
+            return Tried::Retry(controller.after_failure(h, failure));
+        }
         let mut h_new = h;
         let mut err_norm = None;
         if let Some(err) = &attempt.err {
@@ -439,10 +442,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         self.restart_steps.accepted(h, err_norm, stepper.order());
         // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
         let counted = Counted::new(&*self.sys);
-        let completed = stepper.complete(&counted, t, &y, h, &mut attempt);
+        let completed = stepper.complete(&counted, t, &y, h, attempt);
         self.stats.rhs_evals += counted.evals();
         stepper.accepted();
-        if completed && !is_finite(&attempt) {
+        if completed && !is_finite(attempt) {
             self.t = t + h;
             self.y = attempt.y1;
             return Tried::End(
@@ -450,7 +453,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 format!("f is not finite at the accepted state at t = {}", t + h),
             );
         }
-        Tried::Accepted(attempt, h_new)
+        Tried::Accepted(h_new)
     }
 
     /// Hairer's stiffness test on an accepted step from `t` of size `h`; the run's end when the

@@ -28,6 +28,18 @@ pub struct Attempt<const N: usize> {
     pub err_low: Option<State<N>>,
 }
 
+impl<const N: usize> Attempt<N> {
+    /// A place for an attempt (zeros, no slopes, no estimates), before the first is written.
+    pub fn empty() -> Self {
+        Attempt {
+            y1: State::<N>::zeros(),
+            f1: None,
+            err: None,
+            err_low: None,
+        }
+    }
+}
+
 /// A change of method between two steps (`auto.rs`), which the loop takes from
 /// [`Stepper::take_switch`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -66,6 +78,23 @@ pub trait Stepper<const N: usize> {
         f0: &State<N>,
         h: f64,
     ) -> Result<Attempt<N>, StepFailure>;
+    /// [`Stepper::step`] written into `out`, which the loop keeps from one attempt to the
+    /// next: an attempt holds four states, and moving it by value costs a copy of each on
+    /// every attempt. `out` is unspecified after a failure. Methods on the hot path write
+    /// their fields in place; the default moves the result of `step` there.
+    #[inline]
+    fn step_into<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
+        *out = self.step(sys, t, y, f0, h)?;
+        Ok(())
+    }
     /// The last attempt, from `(t, y)` with size `h`, was accepted: the evaluations a method
     /// makes only for an accepted step, before its stiffness estimate and dense output are
     /// asked for (DOP853: `f(y1)` into `a.f1`, and the three stages of its continuous
