@@ -13,8 +13,22 @@ impl<const N: usize> OdeSystem<N> for Model {
         // In the order of `Rate` (`Zero` and the padding to 16, so that an index needs no bounds
         // check, are zeros).
         let rates = [
-            e.v_t, e.a_t, e.dp_m, e.flow, v_p, e.a_p, e.p_work, e.p_orifice, e.p_friction,
-            e.p_contact, e.p_plane, e.p_liquid, e.f_c, 0.0, 0.0, 0.0,
+            e.v_t,
+            e.a_t,
+            e.dp_m,
+            e.flow,
+            v_p,
+            e.a_p,
+            e.p_work,
+            e.p_orifice,
+            e.p_friction,
+            e.p_contact,
+            e.p_plane,
+            e.p_liquid,
+            e.f_c,
+            0.0,
+            0.0,
+            0.0,
         ];
         let of = &self.layout.rates;
         State::<N>::from_fn(|j, _| rates[usize::from(of[j] & 15)])
