@@ -74,7 +74,7 @@ pub struct Layout {
 pub(crate) enum Rate {
     ToolSpeed,
     ToolAcceleration,
-    ChamberPressureRate,
+    ChamberPressureChange,
     Flow,
     ObjectSpeed,
     ObjectAcceleration,
@@ -141,7 +141,7 @@ impl Layout {
         };
         set(l.tool, Rate::ToolSpeed);
         set(l.tool.map(|i| i + 1), Rate::ToolAcceleration);
-        set(l.liquid, Rate::ChamberPressureRate);
+        set(l.liquid, Rate::ChamberPressureChange);
         set(l.liquid.map(|i| i + 1), Rate::Flow);
         set(l.object, Rate::ObjectSpeed);
         set(l.object.map(|i| i + 1), Rate::ObjectAcceleration);
