@@ -132,6 +132,38 @@ impl<const N: usize> DenseOutput<N> {
         }
     }
 
+    /// [`DenseOutput::leading`] written over `out`, in place: an observer that keeps the last
+    /// step on every step overwrites its copy instead of moving a new one in.
+    pub fn leading_into<const M: usize>(&self, out: &mut DenseOutput<M>) {
+        fn cut<const N: usize, const M: usize>(s: &State<N>, o: &mut State<M>) {
+            for i in 0..M {
+                o[i] = if i < N { s[i] } else { 0.0 };
+            }
+        }
+        out.t0 = self.t0;
+        out.h = self.h;
+        cut(&self.r1, &mut out.r1);
+        cut(&self.r2, &mut out.r2);
+        cut(&self.r3, &mut out.r3);
+        cut(&self.r4, &mut out.r4);
+        cut(&self.r5, &mut out.r5);
+        match (&self.high, &mut out.high) {
+            (None, high) => *high = None,
+            (Some(h), Some(o)) => {
+                for (a, b) in h.iter().zip(o.iter_mut()) {
+                    cut(a, b);
+                }
+            }
+            (Some(h), high) => {
+                let mut o = [State::<M>::zeros(); 3];
+                for (a, b) in h.iter().zip(o.iter_mut()) {
+                    cut(a, b);
+                }
+                *high = Some(o);
+            }
+        }
+    }
+
     /// End of the interval this output covers.
     pub fn t1(&self) -> f64 {
         self.t0 + self.h
@@ -160,11 +192,15 @@ mod tests {
         ];
         let order4 = DenseOutput::from_coefficients(0.5, 0.25, [r[0], r[1], r[2], r[3], r[4]]);
         let order7 = DenseOutput::order7(0.5, 0.25, r);
-        for full in [order4, order7] {
+        // written in place over an output of the other form, as an observer keeping steps does
+        let mut kept = [order7.leading::<5>(), order4.leading::<5>()];
+        for (full, into) in [order4, order7].into_iter().zip(&mut kept) {
             let two: DenseOutput<2> = full.leading();
             let five: DenseOutput<5> = full.leading();
+            full.leading_into(into);
             for t in [0.5, 0.55, 0.6125, 0.7, 0.75] {
                 let (y, y2, y5) = (full.eval(t), two.eval(t), five.eval(t));
+                assert_eq!(into.eval(t), y5, "in place, t = {t}");
                 assert_eq!((y2[0], y2[1]), (y[0], y[1]));
                 assert_eq!(
                     (y5[0], y5[1], y5[2], y5[3], y5[4]),

@@ -243,11 +243,22 @@ impl PeakSampler {
         m.max_stroke = s.largest();
         // a sample at the step's end may be a top: keep the step until the next one shows
         let may_top = self.trackers[..tracked].iter().any(PeakTracker::may_top);
-        self.kept = may_top.then(|| KeptStep {
-            dense: step.dense.leading(),
-            seg,
-            regime: r,
-        });
+        // (overwritten in place: it is kept on most steps near a peak)
+        match (&mut self.kept, may_top) {
+            (Some(k), true) => {
+                step.dense.leading_into(&mut k.dense);
+                k.seg = seg;
+                k.regime = r;
+            }
+            (None, true) => {
+                self.kept = Some(KeptStep {
+                    dense: step.dense.leading(),
+                    seg,
+                    regime: r,
+                })
+            }
+            (_, false) => self.kept = None,
+        }
         // a stick or slip of the tool, or a slip that turns, changes its friction at once
         let (now, then) = (&model.regime, &r);
         if now.tool_stuck != then.tool_stuck || now.tool_dir != then.tool_dir {
