@@ -1,4 +1,4 @@
-//! Python values <-> the TOML values of scene and sweep keys, and JSON values -> Python.
+//! Python values <-> the TOML values of scene and sweep keys.
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
@@ -95,35 +95,6 @@ pub fn from_toml<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, P
             let d = PyDict::new(py);
             for (k, x) in t {
                 d.set_item(k, from_toml(py, x)?)?;
-            }
-            d.into_any()
-        }
-    })
-}
-
-/// A JSON value as a Python value (numbers keep their exact binary value).
-pub fn from_json<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
-    Ok(match v {
-        serde_json::Value::Null => py.None().into_bound(py),
-        serde_json::Value::Bool(b) => PyBool::new(py, *b).to_owned().into_any(),
-        serde_json::Value::Number(n) => match (n.as_i64(), n.as_u64(), n.as_f64()) {
-            (Some(i), _, _) => i.into_pyobject(py)?.into_any(),
-            (None, Some(u), _) => u.into_pyobject(py)?.into_any(),
-            (_, _, Some(f)) => PyFloat::new(py, f).into_any(),
-            _ => py.None().into_bound(py),
-        },
-        serde_json::Value::String(s) => PyString::new(py, s).into_any(),
-        serde_json::Value::Array(a) => {
-            let l = PyList::empty(py);
-            for x in a {
-                l.append(from_json(py, x)?)?;
-            }
-            l.into_any()
-        }
-        serde_json::Value::Object(o) => {
-            let d = PyDict::new(py);
-            for (k, x) in o {
-                d.set_item(k, from_json(py, x)?)?;
             }
             d.into_any()
         }

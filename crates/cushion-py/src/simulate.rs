@@ -2,13 +2,15 @@
 //! summary, trajectory columns and event log handed back.
 
 use cushion_model::{
-    simulate as run_scene, EventLogEntry, RunOptions, RunStatus, Scene, Trajectory, TrajectoryPoint,
+    simulate as run_scene, Cell, EventLogEntry, RunOptions, RunStatus, Scene, Summary, Trajectory,
+    TrajectoryPoint,
 };
 use numpy::{PyArray1, PyArrayMethods};
+use pyo3::intern;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyList, PyString};
+use pyo3::sync::PyOnceLock;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyList, PyString};
 
-use crate::convert::from_json;
 use crate::errors::{config_error, guarded};
 use crate::scene::{apply_set, scene_from};
 
@@ -47,14 +49,44 @@ pub fn simulate<'py>(
         // The scene passed the checks but the model found it unusable: still bad input.
         return Err(config_error(&result.summary.message));
     }
-    let summary = serde_json::to_value(&result.summary)
-        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("summary: {e}")))?;
     let traj = match &result.trajectory {
         Some(t) => columns(py, t)?.into_any(),
         None => py.None().into_bound(py),
     };
-    Ok((from_json(py, &summary)?, traj, events(py, &result.events)?))
+    let summary = summary_dict(py, &result.summary)?.into_any();
+    Ok((summary, traj, events(py, &result.events)?))
 }
+
+/// The summary as the dict of `cushion simulate --json`: the cells of [`Summary::COLUMNS`],
+/// the `stats_` ones nested under `stats` without the prefix, a float that JSON cannot hold
+/// (NaN, infinite) as `None` as JSON writes it (`null`). The keys are made once per process
+/// (`tests/python/test_simulate.py::test_summary_equals_the_command_line_json_to_the_bit`).
+pub fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
+    static KEYS: PyOnceLock<Vec<Py<PyString>>> = PyOnceLock::new();
+    let keys = KEYS.get_or_init(py, || {
+        Summary::COLUMNS
+            .iter()
+            .map(|c| PyString::intern(py, c.strip_prefix(STATS).unwrap_or(c)).unbind())
+            .collect()
+    });
+    let (top, stats) = (PyDict::new(py), PyDict::new(py));
+    for ((column, key), cell) in Summary::COLUMNS.iter().zip(keys).zip(s.cells()) {
+        let value = match cell {
+            Cell::Float(Some(f)) if f.is_finite() => PyFloat::new(py, f).into_any(),
+            Cell::Float(_) => py.None().into_bound(py),
+            Cell::Int(i) => i.into_pyobject(py)?.into_any(),
+            Cell::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
+            Cell::Text(t) => PyString::new(py, &t).into_any(),
+        };
+        let into = if column.starts_with(STATS) { &stats } else { &top };
+        into.set_item(key.bind(py), value)?;
+    }
+    top.set_item(intern!(py, "stats"), stats)?;
+    Ok(top)
+}
+
+/// The prefix of the solver's counts among [`Summary::COLUMNS`].
+const STATS: &str = "stats_";
 
 fn set_solver(
     s: &mut Scene,
