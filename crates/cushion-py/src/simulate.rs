@@ -78,7 +78,11 @@ pub fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, Py
             Cell::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
             Cell::Text(t) => PyString::new(py, &t).into_any(),
         };
-        let into = if column.starts_with(STATS) { &stats } else { &top };
+        let into = if column.starts_with(STATS) {
+            &stats
+        } else {
+            &top
+        };
         into.set_item(key.bind(py), value)?;
     }
     top.set_item(intern!(py, "stats"), stats)?;
