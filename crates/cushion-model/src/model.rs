@@ -64,7 +64,7 @@ pub struct Layout {
     pub e_liquid: Option<usize>,
     /// What each state's derivative is, by state (`Rate` as `u8`; the right-hand side gathers
     /// them in one pass instead of testing each part of the layout on every evaluation).
-    pub rates: [u8; MAX_STATES],
+    pub(crate) rates: [u8; MAX_STATES],
 }
 
 /// The derivative of a state, as an index into the right-hand side's list of rates
