@@ -174,25 +174,6 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
     }
 
     #[inline]
-    fn step<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f0: &State<N>,
-        h: f64,
-    ) -> Result<Attempt<N>, StepFailure> {
-        (self.t, self.y, self.h) = (t, *y, h);
-        if self.stiff {
-            self.implicit.step(sys, t, y, f0, h)
-        } else {
-            let a = self.explicit.step(sys, t, y, f0, h)?;
-            self.h_lambda = self.explicit.stiffness_estimate(h, &a);
-            Ok(a)
-        }
-    }
-
-    #[inline]
     fn step_into<S: OdeSystem<N>>(
         &mut self,
         sys: &S,

@@ -119,17 +119,9 @@ impl<const N: usize> DenseOutput<N> {
     /// keeps of a step it may still search once the integrator has moved on. It evaluates to
     /// exactly those components of [`DenseOutput::eval`], whatever the method's form.
     pub fn leading<const M: usize>(&self) -> DenseOutput<M> {
-        let cut = |s: &State<N>| State::<M>::from_fn(|i, _| if i < N { s[i] } else { 0.0 });
-        DenseOutput {
-            t0: self.t0,
-            h: self.h,
-            r1: cut(&self.r1),
-            r2: cut(&self.r2),
-            r3: cut(&self.r3),
-            r4: cut(&self.r4),
-            r5: cut(&self.r5),
-            high: self.high.as_ref().map(|h| h.each_ref().map(cut)),
-        }
+        let mut out = DenseOutput::from_coefficients(0.0, 0.0, [State::<M>::zeros(); 5]);
+        self.leading_into(&mut out);
+        out
     }
 
     /// [`DenseOutput::leading`] written over `out`, in place: an observer that keeps the last
@@ -147,19 +139,13 @@ impl<const N: usize> DenseOutput<N> {
         cut(&self.r3, &mut out.r3);
         cut(&self.r4, &mut out.r4);
         cut(&self.r5, &mut out.r5);
-        match (&self.high, &mut out.high) {
-            (None, high) => *high = None,
-            (Some(h), Some(o)) => {
-                for (a, b) in h.iter().zip(o.iter_mut()) {
+        match &self.high {
+            None => out.high = None,
+            Some(h) => {
+                let o = out.high.get_or_insert([State::<M>::zeros(); 3]);
+                for (a, b) in h.iter().zip(o) {
                     cut(a, b);
                 }
-            }
-            (Some(h), high) => {
-                let mut o = [State::<M>::zeros(); 3];
-                for (a, b) in h.iter().zip(o.iter_mut()) {
-                    cut(a, b);
-                }
-                *high = Some(o);
             }
         }
     }

@@ -112,20 +112,6 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
     }
 
     #[inline]
-    fn step<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f0: &State<N>,
-        h: f64,
-    ) -> Result<Attempt<N>, StepFailure> {
-        let mut a = Attempt::empty();
-        self.step_into(sys, t, y, f0, h, &mut a)?;
-        Ok(a)
-    }
-
-    #[inline]
     fn step_into<S: OdeSystem<N>>(
         &mut self,
         sys: &S,

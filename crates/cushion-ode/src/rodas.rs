@@ -154,14 +154,15 @@ impl<const N: usize> Stepper<N> for Rodas<N> {
         PredictiveController::rodas()
     }
 
-    fn step<S: OdeSystem<N>>(
+    fn step_into<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
         t: f64,
         y: &State<N>,
         f0: &State<N>,
         h: f64,
-    ) -> Result<Attempt<N>, StepFailure> {
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
         if !self.jacobian_current {
             self.evaluate_jacobian(sys, t, y, f0);
         }
@@ -191,12 +192,13 @@ impl<const N: usize> Stepper<N> for Rodas<N> {
         let f = sys.rhs(t + h, &y6);
         let k6 = solve(f + (k1 * C61 + k2 * C62 + k3 * C63 + k4 * C64 + k5 * C65) * hi);
         self.k = [k1, k2, k3, k4, k5, k6];
-        Ok(Attempt {
+        *out = Attempt {
             y1: y6 + k6,
             f1: None,
             err: Some(k6),
             err_low: None,
-        })
+        };
+        Ok(())
     }
 
     /// RODAS's continuous extension (order 3):

@@ -60,7 +60,7 @@ fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
 }
 
 /// What became of one attempted step.
-enum Tried<const N: usize> {
+enum Tried {
     /// Accepted (and completed; the attempt is where the loop keeps it), with the step size
     /// the controller proposes next.
     Accepted(f64),
@@ -389,7 +389,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         adaptive: bool,
         h: f64,
         attempt: &mut Attempt<N>,
-    ) -> Tried<N> {
+    ) -> Tried {
         let (t, y, f0) = (self.t, self.y, self.f);
         let counted = Counted::new(&*self.sys);
         let outcome = stepper.step_into(&counted, t, &y, &f0, h, attempt);

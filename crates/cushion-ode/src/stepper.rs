@@ -54,7 +54,7 @@ pub struct Switch {
 
 /// A one-step method.
 ///
-/// The loop calls [`Stepper::step`] for each attempt and tells the method what became of it:
+/// The loop calls [`Stepper::step_into`] for each attempt and tells the method what became of it:
 /// [`Stepper::accepted`], [`Stepper::rejected`] (error too large, or a failure), and
 /// [`Stepper::restart`] when a handler changed the state or the regime (an event's `Restart`,
 /// a time stop). A method that caches something of its starting point (a Jacobian, a
@@ -69,20 +69,10 @@ pub trait Stepper<const N: usize> {
     fn is_adaptive(&self) -> bool;
     /// The method's step-size controller, from the settings.
     fn controller(&self, opts: &SolverOptions) -> Self::Controller;
-    /// Attempt a step. Every evaluation of `f` goes through `sys` (the loop counts them there).
-    fn step<S: OdeSystem<N>>(
-        &mut self,
-        sys: &S,
-        t: f64,
-        y: &State<N>,
-        f0: &State<N>,
-        h: f64,
-    ) -> Result<Attempt<N>, StepFailure>;
-    /// [`Stepper::step`] written into `out`, which the loop keeps from one attempt to the
-    /// next: an attempt holds four states, and moving it by value costs a copy of each on
-    /// every attempt. `out` is unspecified after a failure. Methods on the hot path write
-    /// their fields in place; the default moves the result of `step` there.
-    #[inline]
+    /// Attempt a step, written into `out`, which the loop keeps from one attempt to the next
+    /// (an attempt holds four states: moving it by value would copy each on every attempt).
+    /// `out` is unspecified after a failure. Every evaluation of `f` goes through `sys` (the
+    /// loop counts them there).
     fn step_into<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
@@ -91,9 +81,20 @@ pub trait Stepper<const N: usize> {
         f0: &State<N>,
         h: f64,
         out: &mut Attempt<N>,
-    ) -> Result<(), StepFailure> {
-        *out = self.step(sys, t, y, f0, h)?;
-        Ok(())
+    ) -> Result<(), StepFailure>;
+    /// [`Stepper::step_into`] into a new attempt.
+    #[inline]
+    fn step<S: OdeSystem<N>>(
+        &mut self,
+        sys: &S,
+        t: f64,
+        y: &State<N>,
+        f0: &State<N>,
+        h: f64,
+    ) -> Result<Attempt<N>, StepFailure> {
+        let mut a = Attempt::empty();
+        self.step_into(sys, t, y, f0, h, &mut a)?;
+        Ok(a)
     }
     /// The last attempt, from `(t, y)` with size `h`, was accepted: the evaluations a method
     /// makes only for an accepted step, before its stiffness estimate and dense output are
@@ -230,14 +231,15 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
     }
 
     #[inline]
-    fn step<S: OdeSystem<N>>(
+    fn step_into<S: OdeSystem<N>>(
         &mut self,
         sys: &S,
         t: f64,
         y: &State<N>,
         f0: &State<N>,
         h: f64,
-    ) -> Result<Attempt<N>, StepFailure> {
+        out: &mut Attempt<N>,
+    ) -> Result<(), StepFailure> {
         let tab = self.tab;
         let s = tab.c.len();
         self.k[0] = *f0;
@@ -270,12 +272,13 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
             }
             Some(e)
         };
-        Ok(Attempt {
+        *out = Attempt {
             y1,
             f1: Some(f1),
             err,
             err_low: None,
-        })
+        };
+        Ok(())
     }
 
     fn dense(
