@@ -45,7 +45,8 @@ and event location included).
 
 The engine's methods: dp5 and dop853 (rtol 1e-3 to 1e-12, atol = rtol / 1000), rodas and auto
 (to 1e-10), rk4 and euler (fixed steps), all at the scene's defaults (the energy ledger on: four
-more states, integrated and in the error norm); dp5 and dop853 with `energy.ledger = false`
+more states, integrated, their errors added to the error norm's sum but not to its count);
+dp5 and dop853 with `energy.ledger = false`
 ("ledger off"), which compute what the peers do; and dp5 with `solver.ringing_tail = false`
 ("ringing tail off": the tool's last ringing on its stop integrated, not written in closed form).
 

@@ -11,6 +11,9 @@
 //! - `int F_c dt` (only with plane friction: the robot impulse then needs it; otherwise the
 //!   impulse follows exactly from momentum, `int F_r dt = -(m_t dv_t + m_p dv_p)`).
 //!
+//! The ledger's states and `int F_c dt` are quadratures: no rate reads them
+//! ([`Layout::quadratures`]).
+//!
 //! The robot is prescribed (not a state). Discrete regimes (contact on/off per contact, tool
 //! stuck or slipping, object stuck or sliding, sensor switched, robot phase) change only in
 //! event and time-stop handlers; the right-hand side is smooth within a regime.
@@ -153,6 +156,33 @@ impl Layout {
         set(l.e_liquid, Rate::LiquidPower);
         set(l.contact_impulse, Rate::ContactForce);
         l
+    }
+
+    /// How many states are quadratures: the ledger's energies and `int F_c dt`, integrals of
+    /// the other states that no rate reads. The integrator's error norm averages over the other
+    /// states (`cushion_ode::SolverOptions::quadratures`), so that the ledger, whose integrals
+    /// are smooth where the motion is, barely changes the steps
+    /// (`tests/runs.rs::the_ledger_barely_changes_the_steps`), and still limits them where the
+    /// forces change while the states do not. None when every state is one (the rigid flange
+    /// alone).
+    pub fn quadratures(&self) -> usize {
+        let q = [
+            self.work,
+            self.d_orifice,
+            self.d_friction,
+            self.d_contact,
+            self.d_plane,
+            self.e_liquid,
+            self.contact_impulse,
+        ]
+        .iter()
+        .filter(|i| i.is_some())
+        .count();
+        if q < self.n {
+            q
+        } else {
+            0
+        }
     }
 }
 

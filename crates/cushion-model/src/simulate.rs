@@ -104,6 +104,7 @@ pub fn solver_options(scene: &Scene) -> SolverOptions {
         stiffness: scene.solver.stiffness,
         time_stops,
         output: Output::None,
+        quadratures: crate::model::Layout::of(scene).quadratures(),
         ..SolverOptions::default()
     }
 }

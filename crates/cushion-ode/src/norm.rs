@@ -1,4 +1,5 @@
-//! Hairer's error norm: RMS of `e_i / (atol_i + rtol_i * max(|y0_i|, |y1_i|))`.
+//! Hairer's error norm: RMS of `e_i / (atol_i + rtol_i * max(|y0_i|, |y1_i|))`, the mean taken
+//! over the components that are not quadratures ([`crate::SolverOptions::quadratures`]).
 
 use crate::State;
 
@@ -7,6 +8,8 @@ use crate::State;
 pub(crate) struct Weights<const N: usize> {
     pub rtol: State<N>,
     pub atol: State<N>,
+    /// What the sum of squares is averaged over: `N` less the quadratures (at least 1).
+    pub averaged_over: f64,
 }
 
 impl<const N: usize> Weights<N> {
@@ -18,7 +21,12 @@ impl<const N: usize> Weights<N> {
             rtol[i] = opts.rtol.get(i);
             atol[i] = opts.atol.get(i);
         }
-        Weights { rtol, atol }
+        let averaged_over = N.saturating_sub(opts.quadratures).max(1) as f64;
+        Weights {
+            rtol,
+            atol,
+            averaged_over,
+        }
     }
 
     /// The scale of each component at `y`: `atol + rtol |y|`.
@@ -40,7 +48,7 @@ impl<const N: usize> Weights<N> {
             let q = err[i] / sk;
             sum += q * q;
         }
-        (sum / N as f64).sqrt()
+        (sum / self.averaged_over).sqrt()
     }
 
     /// Hairer's DOP853 norm of its two estimates, `err5` (order 5) and `err3` (order 3), both
@@ -66,7 +74,7 @@ impl<const N: usize> Weights<N> {
         }
         let deno = e5 + 0.01 * e3;
         if deno > 0.0 {
-            e5 / (N as f64 * deno).sqrt()
+            e5 / (self.averaged_over * deno).sqrt()
         } else {
             0.0
         }
@@ -82,5 +90,65 @@ impl<const N: usize> Weights<N> {
             sum += q * q;
         }
         sum
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::SolverOptions;
+
+    fn weights(quadratures: usize) -> Weights<3> {
+        Weights::of(&SolverOptions {
+            rtol: 1e-3.into(),
+            atol: 1e-6.into(),
+            quadratures,
+            ..SolverOptions::default()
+        })
+    }
+
+    /// A quadrature adds its squared error to the sum but not to the count.
+    #[test]
+    fn quadratures_add_their_squares_but_not_to_the_count() {
+        let y = State::<3>::new(1.0, -2.0, 1e3);
+        let sk = [1e-6 + 1e-3, 1e-6 + 2e-3, 1e-6 + 1.0];
+        let err = State::<3>::new(3e-3, -1e-3, 0.5);
+        let q: Vec<f64> = (0..3).map(|i| err[i] / sk[i]).collect();
+        let all = q.iter().map(|v| v * v).sum::<f64>();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-15 * b;
+        assert!(close(
+            weights(0).error_norm(&err, &y, &y),
+            (all / 3.0).sqrt()
+        ));
+        assert!(close(
+            weights(1).error_norm(&err, &y, &y),
+            (all / 2.0).sqrt()
+        ));
+        // With an exact quadrature, the norm is the RMS over the other components.
+        let exact = State::<3>::new(3e-3, -1e-3, 0.0);
+        let others = q[0] * q[0] + q[1] * q[1];
+        assert!(close(
+            weights(1).error_norm(&exact, &y, &y),
+            (others / 2.0).sqrt()
+        ));
+        // DOP853's norm averages over the same count.
+        let e3 = State::<3>::new(1e-3, 0.0, 0.1);
+        let (n0, n1) = (
+            weights(0).dop853_error_norm(&err, &e3, &y, &y),
+            weights(1).dop853_error_norm(&err, &e3, &y, &y),
+        );
+        assert!(close(n1, n0 * (3.0f64 / 2.0).sqrt()));
+    }
+
+    #[test]
+    fn the_norm_needs_a_component_that_is_not_a_quadrature() {
+        let y0 = State::<3>::zeros();
+        let opts = |quadratures| SolverOptions {
+            quadratures,
+            ..SolverOptions::default()
+        };
+        assert!(opts(2).check(0.0, &y0, 1.0, 0).is_ok());
+        let e = opts(3).check(0.0, &y0, 1.0, 0).unwrap_err();
+        assert!(e.contains("quadratures = 3"), "{e}");
     }
 }

@@ -144,6 +144,18 @@ pub struct SolverOptions {
     pub event_subdivisions: usize,
     /// Which points to record.
     pub output: Output,
+    /// How many of the state's components are quadratures: integrals `q' = g(t, y)` of the
+    /// others that no rate reads (a dissipated energy, a work, an impulse). They stay in the
+    /// error norm, but its mean square is taken over the other components only: a quadrature
+    /// adds its squared error without adding to the count. In the plain RMS, each quadrature
+    /// whose error is small (a smooth integral) would lower the norm by adding to the count, and
+    /// so widen the steps of the solution and worsen its accuracy by how many quadratures there
+    /// are; here such a quadrature leaves the steps nearly as they are without it, while one
+    /// whose integrand changes where the other components do not (a contact force growing while
+    /// both bodies are held still) still limits the step. CVODES's `errconQ` chooses between
+    /// leaving quadratures out of the norm and counting them as components; this is between the
+    /// two. 0: none; at most `N - 1`.
+    pub quadratures: usize,
 }
 
 impl Default for SolverOptions {
@@ -164,6 +176,7 @@ impl Default for SolverOptions {
             time_stops: Vec::new(),
             event_subdivisions: 4,
             output: Output::None,
+            quadratures: 0,
         }
     }
 }
@@ -231,6 +244,12 @@ impl SolverOptions {
             && opts.safety <= 1.0)
         {
             return Err("step controller settings out of range".into());
+        }
+        if opts.quadratures >= N {
+            return Err(format!(
+                "quadratures = {}: the state has {N} components, and the error norm needs at least one that is not a quadrature",
+                opts.quadratures
+            ));
         }
         if !y0.iter().all(|v| v.is_finite()) {
             return Err("the initial state is not finite".into());
