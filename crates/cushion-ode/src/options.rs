@@ -257,3 +257,20 @@ impl SolverOptions {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_norm_needs_a_component_that_is_not_a_quadrature() {
+        let y0 = State::<3>::zeros();
+        let opts = |quadratures| SolverOptions {
+            quadratures,
+            ..SolverOptions::default()
+        };
+        assert!(opts(2).check(0.0, &y0, 1.0, 0).is_ok());
+        let e = opts(3).check(0.0, &y0, 1.0, 0).unwrap_err();
+        assert!(e.contains("quadratures = 3"), "{e}");
+    }
+}
