@@ -158,7 +158,27 @@ def log(*a):
 
 
 def sci(x):
-    return f"{x:.0e}".replace("e-0", "e-").replace("e+0", "e+")
+    """1e-6 for a power of ten, 5.6e-7 between (the denser grid below)."""
+    text = f"{x:.0e}" if math.isclose(x, 10.0 ** round(math.log10(x)), rel_tol=1e-9) else f"{x:.1e}"
+    return text.replace("e-0", "e-").replace("e+0", "e+")
+
+
+# Where one method's error jumps about from one rtol to the next (the steel stops: the final
+# speed after 147 bounces depends on their phases), a decade grid shows each method a few draws,
+# and the error level where one is cheaper than another is partly which draws it got. There,
+# the fast methods (ours and the compiled peer's) also run at quarter decades from 1e-3 to 1e-7,
+# and the table also reads the work from which the error stays below a level (`interpolate`,
+# `settled`).
+DENSE_GRID = {"steel-stops": [10.0 ** (-3 - k / 4) for k in range(17)]}
+DENSE_METHODS = ("dp5", "dop853", "dp5_no_ledger", "dop853_no_ledger", "cyrk-DOP853", "cyrk-RK45")
+
+
+def rtol_grid(name, method, decades):
+    """The rtols `method` runs at on scene `name`: the decades, and the denser grid where the
+    scene has one and the method is fast enough, from loose to tight."""
+    extra = DENSE_GRID.get(name, []) if method in DENSE_METHODS else []
+    merged = list(decades) + [r for r in extra if not any(math.isclose(r, d, rel_tol=1e-9) for d in decades)]
+    return sorted(merged, reverse=True)
 
 
 # ------------------------------------------------------------------------------ the engine
@@ -731,6 +751,7 @@ def study(names, args, has_dop853):
                 add(name, m, "cushion", label, res, ref["peers"], ref["floor"])
         else:
             for method, rtols, steps in ours:
+                rtols = rtol_grid(name, method, rtols) if rtols else rtols
                 settings = ([(f"rtol={sci(r)}", dict(rtol=r, atol=r / 1000)) for r in rtols] if rtols
                             else [(f"h={sci(h)}", dict(h=h)) for h in steps])
                 for label, st in settings:
@@ -742,7 +763,7 @@ def study(names, args, has_dop853):
         if name == "oscillator" or SCENES[name][2] is not None:
             for method in peers:
                 dead = None
-                for r in peer_rtols:
+                for r in rtol_grid(name, method, peer_rtols):
                     label = f"rtol={sci(r)}"
                     if stiff and method in EXPLICIT_PEERS:
                         res = dict(status="failed (explicit, not run)")
@@ -861,8 +882,11 @@ def charts(df, names, outdir, measure="object_final_velocity"):
         log(f"wrote {os.path.relpath(path, ROOT)}")
 
 
-def interpolate(df, scene, targets, measure="object_final_velocity"):
-    """{method: {target: (seconds, evals)}} by log-log interpolation between settings."""
+def interpolate(df, scene, targets, measure="object_final_velocity", settled=False):
+    """{method: {target: (seconds, evals)}} by log-log interpolation between settings, in the
+    order of their evaluations: where the error first crosses the target, or with `settled`,
+    where it crosses it for the last time (the work from which every costlier setting stays
+    below the target; None if the costliest one is above it)."""
     out = {}
     d = df[(df.scene == scene) & (df.error_measure == measure) & (df.status == "ok") & df.resolved]
     for method, g in d.groupby("method", sort=False):
@@ -872,11 +896,14 @@ def interpolate(df, scene, targets, measure="object_final_velocity"):
         for tgt in targets:
             lt = math.log10(tgt)
             val = None
-            for i in range(len(e) - 1):
+            pairs = range(len(e) - 1)
+            for i in (reversed(pairs) if settled else pairs):
                 if (e[i] - lt) * (e[i + 1] - lt) <= 0 and e[i] != e[i + 1]:
                     w = (lt - e[i]) / (e[i + 1] - e[i])
                     val = (10 ** (s[i] + w * (s[i + 1] - s[i])), 10 ** (n[i] + w * (n[i + 1] - n[i])))
                     break
+            if settled and len(e) and e[-1] > lt:
+                val = None
             res[tgt] = val
         out[method] = res
     return out
@@ -940,17 +967,31 @@ def main():
         df.to_csv(f, index=False, float_format="%.10g")
     log(f"wrote {os.path.relpath(csv, ROOT)} ({len(df)} rows)")
 
-    table, table_trajectory = {}, {}
+    table, table_trajectory, table_settled = {}, {}, {}
+    levels = tuple(10.0 ** -k for k in range(4, 10))
     for name in args.scenes:
-        table[name] = {m: {f"{t:g}": v for t, v in r.items()} for m, r in interpolate(df, name, (1e-6, 1e-9)).items()}
+        table[name] = {m: {f"{t:g}": v for t, v in r.items()} for m, r in interpolate(df, name, levels).items()}
+        table_settled[name] = {m: {f"{t:g}": v for t, v in r.items()}
+                               for m, r in interpolate(df, name, levels, settled=True).items()}
         table_trajectory[name] = {m: {f"{t:g}": v for t, v in r.items()}
                                   for m, r in interpolate(df, name, (1e-4, 1e-6), TRAJECTORY).items()}
     if "paper-hydraulic-dt70" in table:
         log("\npaper-hydraulic-dt70, object final speed: time and evaluations at an error of 1e-6 and 1e-9 "
             "(log-log interpolated)")
         for m, r in table["paper-hydraulic-dt70"].items():
-            cells = ["-" if v is None else f"{v[0] * 1e6:10.0f} us {v[1]:9.0f} evals" for v in r.values()]
+            cells = ["-" if v is None else f"{v[0] * 1e6:10.0f} us {v[1]:9.0f} evals" for v in (r["1e-06"], r["1e-09"])]
             log(f"  {m:15s} {cells[0]:>30s} | {cells[1]:>30s}")
+    for name in DENSE_GRID:
+        if name not in table:
+            continue
+        log(f"\n{name}, object final speed: time per run where the error first crosses each level, and where it "
+            "stays below it (log-log interpolated; the denser grid)")
+        for m in DENSE_METHODS:
+            if m not in table[name]:
+                continue
+            cells = [" / ".join("-" if v is None else f"{v[0] * 1e6:.0f}" for v in (table[name][m].get(k), table_settled[name][m].get(k)))
+                     for k in table[name][m]]
+            log(f"  {m:17s} " + "  ".join(f"{c:>11s}" for c in cells) + "  us (1e-4 ... 1e-9)")
     info.update(
         command=" ".join(["bench/work_precision.py"] + sys.argv[1:]),
         engine_has_dop853=has_dop853,
@@ -963,6 +1004,7 @@ def main():
                             floor=r["floor"]) for n, r in refs.items()},
         at_error=table,
         at_error_trajectory=table_trajectory,
+        at_error_settled=table_settled,
         wall_seconds=round(time.perf_counter() - t_start, 1),
         load_average_at_end=os.getloadavg(),
     )
