@@ -125,18 +125,16 @@ fn a_stiff_contact_costs_few_rejected_attempts() {
 
 /// The same ball bouncing eight times. After each lift-off the first step in free flight is
 /// grown from the one after the lift-off before (`restart_steps.rs`), not capped at the last
-/// contact step. The onsets, whose first attempt was rejected once, start from the size the
-/// retry after the first one was accepted at, not grown: the step that passed the error
-/// estimate after one onset, grown as the estimate allowed and tried first at the next, let
-/// the rebound speed drift (dp5: 1.2e-4 off after eight bounces, against 2.1e-6 now; dop853
-/// 1.3e-5, now 2.5e-6). Measured at rtol 1e-6: 164 evaluations for each impact after the
-/// second with dp5 and 260 with dop853, against 196 and 299 when every restart starts from
-/// Hairer's selection (171 and 228 when the onsets did and only the lift-offs were learned).
+/// contact step; the onsets, whose first attempt is rejected, are not learned, since the step
+/// that passed the error estimate after one onset, tried first at the next, lets the rebound
+/// speed drift (dp5: 1.2e-4 off after eight bounces, against 2.1e-6 now; dop853 1.3e-5 either
+/// way). Measured at rtol 1e-6: 171 evaluations for each impact after the second with dp5 and
+/// 228 with dop853, against 196 and 299 when every restart starts from Hairer's selection.
 #[test]
 fn a_recurring_contact_reuses_its_first_step() {
     let v0 = (2.0 * G * HEIGHT).sqrt();
     for (method, evals_per_impact, rebound_error) in
-        [(Method::Dp5, 175, 4e-6), (Method::Dop853, 275, 4e-6)]
+        [(Method::Dp5, 180, 4e-6), (Method::Dop853, 250, 2e-5)]
     {
         let two = drop_for(method, 1e-6, 2);
         let eight = drop_for(method, 1e-6, 8);
