@@ -162,13 +162,14 @@ def log(*a):
 
 
 def sci(x):
-    """1e-6 for a power of ten, 5.6e-7 between (the denser grid below)."""
-    text = f"{x:.0e}" if math.isclose(x, 10.0 ** round(math.log10(x)), rel_tol=1e-9) else f"{x:.1e}"
+    """1e-6, 3e-5, and two digits where two are needed: 5.6e-7 (the denser grid below)."""
+    mantissa, exponent = f"{x:.1e}".split("e")
+    text = (mantissa[:-2] if mantissa.endswith(".0") else mantissa) + "e" + exponent
     return text.replace("e-0", "e-").replace("e+0", "e+")
 
 
-# Where one method's error jumps about from one rtol to the next (the steel stops: the final
-# speed after 147 bounces depends on their phases), a decade grid shows each method a few draws,
+# Where one method's error jumps about from one rtol to the next (the steel stops' final speed,
+# settled in the first 80 ms: docs/performance.md), a decade grid shows each method a few draws,
 # and the error level where one is cheaper than another is partly which draws it got. There,
 # the fast methods (ours and the compiled peer's) also run at quarter decades from 1e-3 to 1e-7,
 # and the table also reads the work from which the error stays below a level (`interpolate`,
