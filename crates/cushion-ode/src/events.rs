@@ -3,8 +3,11 @@
 //! Detection compares the signs of the event functions at the step's ends and at interior
 //! points of the dense output (`SolverOptions::event_subdivisions`), so two crossings inside one
 //! step are both found; a step that provably holds no crossing (the system's chord bounds,
-//! [`OdeSystem::event_chord_bounds`]) is not sampled inside. Location is a bracketing root
-//! finder (Illinois regula falsi, safeguarded by bisection) on the dense output ([`locate`]).
+//! [`OdeSystem::event_chord_bounds`]) is not sampled inside, and in a step that may hold one
+//! only the functions the bounds do not clear are (all of them again once a handler has acted:
+//! `tests/events.rs::a_function_a_handler_changes_inside_the_step_is_scanned_again`).
+//! Location is a bracketing root finder (Illinois regula falsi, safeguarded by bisection) on
+//! the dense output ([`locate`]).
 //! Dispatch calls the system's handlers in time order, and at one instant in index order.
 //!
 //! A function exactly zero where a step starts has no side, and a crossing needs a start
@@ -298,6 +301,13 @@ impl<const N: usize> EventScan<N> {
             self.g = g_end;
             return (t1, *y1, EventAction::Continue);
         }
+        // The functions the bound clears cannot cross inside the step: only the others are
+        // sampled at the interior points and searched, until a handler acts (then all are).
+        let mut open = [true; MAX_EVENTS];
+        for (i, o) in open[..n].iter_mut().enumerate() {
+            *o = !clearance(self.g[i], g_end[i]).is_some_and(|c| bounds[i] < c);
+        }
+        let mut all_open = open[..n].iter().all(|&o| o);
         let segments = self.segments;
         let fraction = |k: usize| match self.scan_fractions.get(k - 1) {
             Some(&q) => q,
@@ -324,13 +334,21 @@ impl<const N: usize> EventScan<N> {
             }
             let mut g_hi = g_end;
             if hi_t != t1 {
-                self.eval(&*sys, hi_t, &dense.eval(hi_t), &mut g_hi);
+                let y_hi = dense.eval(hi_t);
+                if all_open {
+                    self.eval(&*sys, hi_t, &y_hi, &mut g_hi);
+                } else {
+                    // (a cleared function keeps its value at t1: same side, never searched)
+                    for i in (0..n).filter(|&i| open[i]) {
+                        g_hi[i] = sys.event(i, hi_t, &y_hi);
+                    }
+                }
             }
 
             // Locate every crossing in (lo_t, hi_t]; keep the earliest time.
             let mut t_first = f64::INFINITY;
             let mut times = [f64::INFINITY; MAX_EVENTS];
-            for i in 0..n {
+            for i in (0..n).filter(|&i| open[i]) {
                 let sys = &*sys;
                 let g = |tt| sys.event(i, tt, &dense.eval(tt));
                 let te = if dirs[i].crosses(g_lo[i], g_hi[i]) {
@@ -396,6 +414,9 @@ impl<const N: usize> EventScan<N> {
             for (i, d) in dirs[..n].iter_mut().enumerate() {
                 *d = sys.event_direction(i);
             }
+            // a handler may have changed the functions the bound cleared
+            open = [true; MAX_EVENTS];
+            all_open = true;
             // Record-only: go on scanning from the far side of the crossing, with the values
             // the handlers may have changed.
             self.eval(&*sys, t1, y1, &mut g_end);

@@ -52,6 +52,60 @@ fn two_sign_changes_inside_one_step_are_both_found() {
     assert!(sol.events[1].rising);
 }
 
+/// `x' = 1`: `x = t`. Event 0: `x - 0.3`, record only; its handler arms event 1, which is the
+/// constant 1 until then and `x - 0.6` after. Both have chord bounds (the output's deviation;
+/// zero for the constant).
+struct Armed {
+    armed: bool,
+}
+
+impl OdeSystem<1> for Armed {
+    fn rhs(&self, _t: f64, _y: &State<1>) -> State<1> {
+        State::<1>::new(1.0)
+    }
+    fn event_count(&self) -> usize {
+        2
+    }
+    fn events(&self, _t: f64, y: &State<1>, g: &mut [f64]) {
+        g[0] = y[0] - 0.3;
+        g[1] = if self.armed { y[0] - 0.6 } else { 1.0 };
+    }
+    fn event_chord_bound(&self, i: usize, _t0: f64, _t1: f64, dev: &State<1>) -> Option<f64> {
+        Some(if i == 1 && !self.armed { 0.0 } else { dev[0] })
+    }
+    fn on_event(
+        &mut self,
+        i: usize,
+        _t: f64,
+        _y: &mut State<1>,
+        _ctl: &mut Control,
+    ) -> EventAction {
+        self.armed |= i == 0;
+        EventAction::Continue
+    }
+}
+
+/// The scan samples inside a step only the functions the chord bound does not clear; a
+/// record-only handler that changes the others (here: arms event 1, cleared until then) makes
+/// the rest of the step scan them all, so the crossing it causes in the same step is found.
+#[test]
+fn a_function_a_handler_changes_inside_the_step_is_scanned_again() {
+    let mut sys = Armed { armed: false };
+    let opts = SolverOptions {
+        h0: Some(1.0),
+        ..Default::default()
+    };
+    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &opts);
+    assert_eq!(sol.status, Status::Success);
+    assert_eq!(sol.stats.steps, 1, "one step over the whole interval");
+    let found: Vec<(usize, f64)> = sol.events.iter().map(|e| (e.index, e.t)).collect();
+    assert_eq!(found.len(), 2, "{found:?}");
+    assert_eq!(found[0].0, 0);
+    assert!((found[0].1 - 0.3).abs() < 1e-15, "{found:?}");
+    assert_eq!(found[1].0, 1);
+    assert!((found[1].1 - 0.6).abs() < 1e-15, "{found:?}");
+}
+
 /// A ball that bounces perfectly elastically, resetting its height to exactly zero, so its
 /// event function is exactly zero at every restart.
 struct ElasticBall {
