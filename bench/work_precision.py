@@ -87,6 +87,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import scene_scipy as ss  # noqa: E402
+import cyrk_peer  # noqa: E402
 import stiff_scenes_scipy as sts  # noqa: E402
 
 import cushion  # noqa: E402
@@ -421,168 +422,28 @@ def hairer_once(name, integ, rtol, atol, budget):
 
 # ------------------------------------------------------- CyRK with a numba-compiled right-hand side
 
-CYRK = None  # filled by cyrk_setup(): dict(solve=..., addr={...}) or a reason string
+CYRK = None  # filled by cyrk_setup(): dict(run=..., osc=..., addr={...}) or a reason string
 
 
 def cyrk_setup():
+    """Compile the compiled peer (`cyrk_peer.py`), or keep the reason it is missing."""
     global CYRK
-    try:
-        import numba as nb
-        from numba import types
-        from numba.extending import intrinsic
-        from CyRK import cyjit, nbsolve2_ivp
-        import CyRK
-    except Exception as e:  # noqa: BLE001
-        CYRK = f"not installed ({type(e).__name__}: {e})"
+    peer, reason = cyrk_peer.setup(OSC_W, OSC_ZETA)
+    if peer is None:
+        CYRK = reason
         return
-
-    @intrinsic
-    def counter_at(typingctx, addr):
-        sig = types.CPointer(types.int64)(types.int64)
-
-        def codegen(context, builder, signature, args):
-            return builder.inttoptr(args[0], context.get_value_type(types.CPointer(types.int64)))
-        return sig, codegen
-
-    L, M_T, M_P, A_P, VG0, P10, KAPPA, B = ss.L, ss.M_T, ss.M_P, ss.A_P, ss.VG0, ss.P10, ss.KAPPA, ss.B
-    K_C, CHI_C, CHI_E, V_MAX, A_BRAKE = ss.K_C, ss.CHI_C, ss.CHI_E, ss.V_MAX, ss.A_BRAKE
-    DPK = 0.5 * ss.C0 * ss.RHO * (ss.A_P / ss.A_O) ** 2
-    W, Z = OSC_W, OSC_ZETA
-
-    @nb.njit(inline="always")
-    def hc(k, chi, d, dd):
-        if d <= 0.0:
-            return 0.0
-        f = d**1.5 * (k + chi * dd)
-        return f if f > 0.0 else 0.0
-
-    def scene_rhs(dy, t, y, args):
-        # args: mode (0 cruise, 1 braking, 2 standing), t_brake, x_b, x_s, k_e, counter address
-        cnt = counter_at(np.int64(args[5]))
-        cnt[0] += 1
-        mode = args[0]
-        if mode == 0.0:
-            x_r, v_r = V_MAX * t, V_MAX
-        elif mode == 1.0:
-            tau = t - args[1]
-            x_r, v_r = args[2] + V_MAX * tau - 0.5 * A_BRAKE * tau * tau, V_MAX - A_BRAKE * tau
-        else:
-            x_r, v_r = args[3], 0.0
-        k_e = args[4]
-        s, sd = x_r - y[0], v_r - y[1]
-        p1 = P10 * (VG0 / (VG0 - A_P * s)) ** KAPPA
-        g = (p1 + DPK * sd * abs(sd)) * A_P + B * sd + hc(k_e, CHI_E, s - L, sd) - hc(k_e, CHI_E, -s, -sd)
-        fc = hc(K_C, CHI_C, y[0] - y[2], y[1] - y[3])
-        dy[0] = y[1]
-        dy[1] = (g - fc) / M_T
-        dy[2] = y[3]
-        dy[3] = fc / M_P
-
-    def osc(dy, t, y, args):
-        cnt = counter_at(np.int64(args[5]))
-        cnt[0] += 1
-        dy[0] = y[1]
-        dy[1] = -2.0 * Z * W * y[1] - W * W * y[0]
-
-    addr = {"scene": cyjit(scene_rhs).address, "osc": cyjit(osc).address}
-
-    @nb.njit
-    def nj_solve(addr_, meth, t0, t1, y0, args, rtol, atol, h0):
-        h0 = min(h0, 0.5 * abs(t1 - t0))  # CyRK takes a first step of at most half the span
-        res = nbsolve2_ivp(addr_, (t0, t1), y0, method=meth, args=args, rtol=rtol, atol=atol, first_step=h0)
-        ok = res.success
-        t, y = res.t.copy(), res.y.copy()
-        res.free()
-        return ok, t, y
-
-    V_SENS = ss.S_SENSOR
-
-    @nb.njit
-    def nj_run(addr_, meth, y0, args, rtol, atol, dead_time, chunk, t_end):
-        """One run of the scene, all of it compiled: (ok, object final speed, t_detect)."""
-        t, y, h = 0.0, y0.copy(), 0.0
-        while True:  # the cruise in chunks until a step passes the sensor
-            ok, ts, ys = nj_solve(addr_, meth, t, min(t + chunk, t_end), y, args, rtol, atol, h)
-            if not ok:
-                return False, 0.0, 0.0
-            found = -1
-            for i in range(ts.size):
-                if V_MAX * ts[i] - ys[0, i] - V_SENS > 0.0:
-                    found = i
-                    break
-            if found > 0:
-                ta, ya, tb = ts[found - 1], ys[:, found - 1].copy(), ts[found]
-                break
-            t, y, h = ts[-1], ys[:, -1].copy(), ts[-1] - ts[-2]
-        h = tb - ta
-        # the sensor's time: Illinois regula falsi on g(t) = v t - x_t(t) - s_sensor, x_t(t) by
-        # integrating from the last step before it
-        a, fa = ta, V_MAX * ta - ya[0] - V_SENS
-        b = tb
-        ok, ts, ys = nj_solve(addr_, meth, ta, b, ya, args, rtol, atol, b - ta)
-        fb = V_MAX * b - ys[0, -1] - V_SENS
-        td, yd = b, ys[:, -1].copy()
-        side = 0
-        for _ in range(80):
-            if fb <= 0.0 or b - a <= 4e-16 * b:
-                break
-            c = (a * fb - b * fa) / (fb - fa)
-            if not (a < c < b):
-                c = 0.5 * (a + b)
-            ok, ts, ys = nj_solve(addr_, meth, ta, c, ya, args, rtol, atol, c - ta)
-            fc = V_MAX * c - ys[0, -1] - V_SENS
-            if fc > 0.0:
-                b, fb, td, yd = c, fc, c, ys[:, -1].copy()
-                if side == -1:
-                    fa *= 0.5
-                side = -1
-            else:
-                a, fa = c, fc
-                if side == 1:
-                    fb *= 0.5
-                side = 1
-                if fc == 0.0:
-                    td, yd = c, ys[:, -1].copy()
-                    break
-            if abs(fc) < 1e-17:
-                break
-        y = yd
-        t_brake = td + dead_time
-        t_stop = t_brake + V_MAX / A_BRAKE
-        x_b = V_MAX * t_brake
-        x_s = x_b + V_MAX * V_MAX / (2.0 * A_BRAKE)
-        bounds = (td, t_brake, t_stop, t_end)
-        for mode in range(3):
-            a, b = min(bounds[mode], t_end), min(bounds[mode + 1], t_end)
-            if b <= a:
-                continue
-            args[0], args[1], args[2], args[3] = float(mode), t_brake, x_b, x_s
-            ok, ts, ys = nj_solve(addr_, meth, a, b, y, args, rtol, atol, h if mode == 0 else 0.0)
-            if not ok:
-                return False, 0.0, td
-            y = ys[:, -1].copy()
-        return True, y[3], td
-
-    @nb.njit
-    def nj_osc(addr_, meth, y0, args, rtol, atol, t_end):
-        ok, ts, ys = nj_solve(addr_, meth, 0.0, t_end, y0, args, rtol, atol, 0.0)
-        return ok, ys[1, -1]
-
-    CYRK = dict(run=nj_run, osc=nj_osc, addr=addr, version=CyRK.__version__, numba=nb.__version__)
+    CYRK = dict(run=peer.run, osc=peer.osc, addr=peer.addr, version=peer.version, numba=peer.numba)
     # compile now, outside any timing
     for m in ("DOP853", "RK45"):
         cyrk_once("oscillator", "cyrk-" + m, 1e-6, 1e-9, 60.0)
         cyrk_once("paper-hydraulic-dt70", "cyrk-" + m, 1e-6, 1e-9, 60.0)
 
 
-CHUNK = 5e-4
-
-
 def cyrk_once(name, method, rtol, atol, budget):
     """One CyRK run, driven from numba (no time limit inside: CyRK's runs here take milliseconds)."""
     meth = method.split("-", 1)[1]
     counter = np.zeros(1, np.int64)
-    args = np.array([0.0, 0.0, 0.0, 0.0, 0.0, float(counter.ctypes.data)])
+    args = cyrk_peer.args_for(counter)
     t0 = time.perf_counter()
     if name == "oscillator":
         ok, v = CYRK["osc"](CYRK["addr"]["osc"], meth, np.array([1.0, 0.0]), args, rtol, atol, OSC_T)
@@ -591,7 +452,8 @@ def cyrk_once(name, method, rtol, atol, budget):
         cls, dead_time = SCENES[name][2]
         scene = cls()
         args[4] = sts.K_STEEL if cls is sts.Steel else ss.K_E
-        ok, v, td = CYRK["run"](CYRK["addr"]["scene"], meth, scene.y0, args, rtol, atol, dead_time, CHUNK, ss.T_END)
+        ok, v, td = CYRK["run"](CYRK["addr"]["scene"], meth, scene.y0, args, rtol, atol, dead_time,
+                                cyrk_peer.CHUNK, ss.T_END)
     secs = time.perf_counter() - t0
     if not ok:
         return dict(status="failed: CyRK did not succeed", seconds=secs, rhs_evals=int(counter[0]))
