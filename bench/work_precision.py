@@ -59,7 +59,7 @@ kinks as segment boundaries, the sensor found by root-finding): SciPy solve_ivp 
 Radau, LSODA (finite-difference Jacobians, as a user gets them); Hairer's Fortran DOPRI5 and
 DOP853 through scipy.integrate.ode (the sensor: `solout` stops at the first step past it, then
 Brent's method on re-integrations from the step before); CyRK's C++ DOP853 and RK45 with a
-numba-compiled right-hand side (`nbsolve2_ivp`; the cruise in 0.5 ms chunks, each restarted with
+numba-compiled right-hand side (`cyrk_peer.py`, `nbsolve2_ivp`; the cruise in 0.5 ms chunks, each restarted with
 the last step size (at most half a chunk: CyRK's limit), until a step passes the sensor, then as for Hairer's). Hairer's and CyRK's
 runs report the final speed and t_detect only (no dense output to find the peak force or the
 fixed-time samples from). The fixed-time samples: the engine's uniform trajectory samples
