@@ -2,9 +2,22 @@
 
 use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
 use cushion_ode::{
-    solve, Control, Direction, EventAction, Method, OdeSystem, Output, SolverOptions, State,
-    Status, Tolerance,
+    solve, Control, Direction, EventAction, Method, OdeSystem, Output, Solution, SolverOptions,
+    State, Status, Tolerance,
 };
+
+/// Solve `x' = 1`, `x(0) = 0` over `[0, 1]` with a first step of 1: the solution is linear,
+/// so that step is accepted and is the whole run, and every crossing lies inside it.
+fn solve_in_one_step<S: OdeSystem<1>>(sys: &mut S) -> Solution<1> {
+    let opts = SolverOptions {
+        h0: Some(1.0),
+        ..Default::default()
+    };
+    let sol = solve(sys, 0.0, State::<1>::new(0.0), 1.0, &opts);
+    assert_eq!(sol.status, Status::Success);
+    assert_eq!(sol.stats.steps, 1, "one step over the whole interval");
+    sol
+}
 
 /// `x' = 1`: `x = t`. Event 0: `(x - a)(x - b)` (both directions), record only.
 struct TwoCrossings {
@@ -38,13 +51,7 @@ fn two_sign_changes_inside_one_step_are_both_found() {
     // The solution is linear: the whole interval is one step, and g has the same sign at both
     // of its ends. Checking only step ends would miss both crossings (SciPy issue 9228).
     let mut sys = TwoCrossings { a: 0.5, b: 0.6 };
-    let opts = SolverOptions {
-        h0: Some(1.0),
-        ..Default::default()
-    };
-    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &opts);
-    assert_eq!(sol.status, Status::Success);
-    assert_eq!(sol.stats.steps, 1, "one step over the whole interval");
+    let sol = solve_in_one_step(&mut sys);
     assert_eq!(sol.events.len(), 2);
     assert!((sol.events[0].t - 0.5).abs() < 1e-15);
     assert!(!sol.events[0].rising);
@@ -91,13 +98,7 @@ impl OdeSystem<1> for Armed {
 #[test]
 fn a_function_a_handler_changes_inside_the_step_is_scanned_again() {
     let mut sys = Armed { armed: false };
-    let opts = SolverOptions {
-        h0: Some(1.0),
-        ..Default::default()
-    };
-    let sol = solve(&mut sys, 0.0, State::<1>::new(0.0), 1.0, &opts);
-    assert_eq!(sol.status, Status::Success);
-    assert_eq!(sol.stats.steps, 1, "one step over the whole interval");
+    let sol = solve_in_one_step(&mut sys);
     let found: Vec<(usize, f64)> = sol.events.iter().map(|e| (e.index, e.t)).collect();
     assert_eq!(found.len(), 2, "{found:?}");
     assert_eq!(found[0].0, 0);
