@@ -422,17 +422,16 @@ def hairer_once(name, integ, rtol, atol, budget):
 
 # ------------------------------------------------------- CyRK with a numba-compiled right-hand side
 
-CYRK = None  # filled by cyrk_setup(): dict(run=..., osc=..., addr={...}) or a reason string
+CYRK = None  # filled by cyrk_setup(): a cyrk_peer.Peer, or the reason it is missing
 
 
 def cyrk_setup():
     """Compile the compiled peer (`cyrk_peer.py`), or keep the reason it is missing."""
     global CYRK
     peer, reason = cyrk_peer.setup(OSC_W, OSC_ZETA)
+    CYRK = reason if peer is None else peer
     if peer is None:
-        CYRK = reason
         return
-    CYRK = dict(run=peer.run, osc=peer.osc, addr=peer.addr, version=peer.version, numba=peer.numba)
     # compile now, outside any timing
     for m in ("DOP853", "RK45"):
         cyrk_once("oscillator", "cyrk-" + m, 1e-6, 1e-9, 60.0)
@@ -446,13 +445,13 @@ def cyrk_once(name, method, rtol, atol, budget):
     args = cyrk_peer.args_for(counter)
     t0 = time.perf_counter()
     if name == "oscillator":
-        ok, v = CYRK["osc"](CYRK["addr"]["osc"], meth, np.array([1.0, 0.0]), args, rtol, atol, OSC_T)
+        ok, v = CYRK.osc(CYRK.addr["osc"], meth, np.array([1.0, 0.0]), args, rtol, atol, OSC_T)
         td = None
     else:
         cls, dead_time = SCENES[name][2]
         scene = cls()
         args[4] = sts.K_STEEL if cls is sts.Steel else ss.K_E
-        ok, v, td = CYRK["run"](CYRK["addr"]["scene"], meth, scene.y0, args, rtol, atol, dead_time,
+        ok, v, td = CYRK.run(CYRK.addr["scene"], meth, scene.y0, args, rtol, atol, dead_time,
                                 cyrk_peer.CHUNK, ss.T_END)
     secs = time.perf_counter() - t0
     if not ok:
@@ -586,7 +585,7 @@ def study(names, args, has_dop853):
     ours.append(("dp5_no_ledger", dp5_rtols, None))
     ours.append(("dp5_no_tail", dp5_rtols, None))
     peers = ["RK45", "DOP853", "Radau", "LSODA", "hairer-dopri5", "hairer-dop853"]
-    if isinstance(CYRK, dict):
+    if isinstance(CYRK, cyrk_peer.Peer):
         peers += ["cyrk-DOP853", "cyrk-RK45"]
 
     def add(name, method, family, setting, res, ref, floor):
@@ -796,8 +795,8 @@ def machine_info():
     import scipy
     info["versions"] = dict(python=platform.python_version(), numpy=np.__version__, scipy=scipy.__version__,
                             cushion=cushion.__version__)
-    if isinstance(CYRK, dict):
-        info["versions"].update(CyRK=CYRK["version"], numba=CYRK["numba"])
+    if isinstance(CYRK, cyrk_peer.Peer):
+        info["versions"].update(CyRK=CYRK.version, numba=CYRK.numba)
     return info
 
 
@@ -823,7 +822,7 @@ def main():
     has_dop853 = engine_has_dop853()
     log(f"cushion {cushion.__version__}, method dop853 {'available' if has_dop853 else 'not available (ConfigError)'}")
     cyrk_setup()
-    log("CyRK: " + (f"{CYRK['version']} with numba {CYRK['numba']}" if isinstance(CYRK, dict) else CYRK))
+    log("CyRK: " + (f"{CYRK.version} with numba {CYRK.numba}" if isinstance(CYRK, cyrk_peer.Peer) else CYRK))
     rows, refs = study(args.scenes, args, has_dop853)
     df = pd.DataFrame(rows)
     os.makedirs(os.path.join(args.out, "figures"), exist_ok=True)
