@@ -818,10 +818,10 @@ def main():
 
     import pandas as pd
     t_start = time.perf_counter()
+    cyrk_setup()  # before machine_info, which records CyRK's and numba's versions
     info = machine_info()
     has_dop853 = engine_has_dop853()
     log(f"cushion {cushion.__version__}, method dop853 {'available' if has_dop853 else 'not available (ConfigError)'}")
-    cyrk_setup()
     log("CyRK: " + (f"{CYRK.version} with numba {CYRK.numba}" if isinstance(CYRK, cyrk_peer.Peer) else CYRK))
     rows, refs = study(args.scenes, args, has_dop853)
     df = pd.DataFrame(rows)
