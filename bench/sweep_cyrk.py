@@ -20,11 +20,8 @@ It prints the time per run and the error of the object's final speed against the
 """
 
 import argparse
-import csv
-import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -36,32 +33,9 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import cyrk_peer  # noqa: E402
 import scene_scipy as ss  # noqa: E402
-from sweep_scipy import AXES, design_runs  # noqa: E402
+from sweep_scipy import cushion_sweep, design_runs  # noqa: E402
 
 PEER_RTOLS = (1e-6, 1e-7)
-
-
-def cushion_sweep(binary, tmp, sample, rtol, atol, repeat):
-    """The runs as one zip sweep on 1 thread: (best wall seconds, summary rows)."""
-    lines = ['name = "cyrk-sample"',
-             f'scene = "{os.path.join(ROOT, "sweeps/scenes/paper-hydraulic-dt70.toml")}"',
-             '[set]', f'"solver.rtol" = {rtol!r}', f'"solver.atol" = {atol!r}', '"module" = "hydraulic"',
-             '[sampling]', 'mode = "zip"']
-    for key in AXES:
-        vals = ", ".join(repr(float(r[key])) for r in sample)
-        lines += ["[[axis]]", f'key = "{key}"', f"values = [{vals}]"]
-    path = os.path.join(tmp, f"sample-{rtol:g}.toml")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    out = os.path.join(tmp, f"rust-{rtol:g}")
-    best = math.inf
-    for _ in range(repeat):
-        subprocess.run(["rm", "-rf", out], check=True)
-        subprocess.run([binary, "sweep", path, "--out", out, "--threads", "1", "--quiet"], check=True)
-        with open(os.path.join(out, "provenance.json")) as f:
-            best = min(best, json.load(f)["wall_seconds"])
-    with open(os.path.join(out, "summary.csv")) as f:
-        return best, list(csv.DictReader(f))
 
 
 def peer_inputs(row):

@@ -41,6 +41,33 @@ def design_runs(binary, workdir):
     return rows
 
 
+def cushion_sweep(binary, tmp, sample, rtol, atol=None, repeat=3):
+    """The design runs `sample` as one zip sweep of the hydraulic module at `rtol` (and `atol`,
+    else the scene's), 1 thread, the whole command timed `repeat` times: (best wall seconds,
+    summary rows)."""
+    lines = ['name = "sample"',
+             f'scene = "{os.path.join(ROOT, "sweeps/scenes/paper-hydraulic-dt70.toml")}"',
+             '[set]', f'"solver.rtol" = {rtol!r}', '"module" = "hydraulic"']
+    if atol is not None:
+        lines.append(f'"solver.atol" = {atol!r}')
+    lines += ['[sampling]', 'mode = "zip"']
+    for key in AXES:
+        vals = ", ".join(repr(float(r[key])) for r in sample)
+        lines += ["[[axis]]", f'key = "{key}"', f"values = [{vals}]"]
+    path = os.path.join(tmp, f"sample-{rtol:g}.toml")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    out = os.path.join(tmp, f"rust-{rtol:g}")
+    best = math.inf
+    for _ in range(repeat):
+        subprocess.run(["rm", "-rf", out], check=True)
+        subprocess.run([binary, "sweep", path, "--out", out, "--threads", "1", "--quiet"], check=True)
+        with open(os.path.join(out, "provenance.json")) as f:
+            best = min(best, json.load(f)["wall_seconds"])
+    with open(os.path.join(out, "summary.csv")) as f:
+        return best, list(csv.DictReader(f))
+
+
 def scipy_run(row):
     sc.P10 = float(row["hydraulic.gas_pressure"])
     r_o = float(row["hydraulic.orifice_radius"])
@@ -64,26 +91,7 @@ def main():
         sample = rows[::step][: args.sample]
 
         # Rust: the same runs as one zip sweep, 1 thread.
-        lines = ['name = "scipy-sample"',
-                 f'scene = "{os.path.join(ROOT, "sweeps/scenes/paper-hydraulic-dt70.toml")}"',
-                 '[set]', '"solver.rtol" = 1e-6', '"module" = "hydraulic"',
-                 '[sampling]', 'mode = "zip"']
-        for key in AXES:
-            vals = ", ".join(repr(float(r[key])) for r in sample)
-            lines += ["[[axis]]", f'key = "{key}"', f"values = [{vals}]"]
-        path = os.path.join(tmp, "sample.toml")
-        with open(path, "w") as f:
-            f.write("\n".join(lines) + "\n")
-        out = os.path.join(tmp, "rust")
-        best = math.inf
-        for _ in range(3):
-            if os.path.exists(out):
-                subprocess.run(["rm", "-rf", out], check=True)
-            subprocess.run([args.binary, "sweep", path, "--out", out, "--threads", "1", "--quiet"], check=True)
-            with open(os.path.join(out, "provenance.json")) as f:
-                best = min(best, json.load(f)["wall_seconds"])
-        with open(os.path.join(out, "summary.csv")) as f:
-            rust_rows = list(csv.DictReader(f))
+        best, rust_rows = cushion_sweep(args.binary, tmp, sample, 1e-6)
 
         scipy_run(sample[0])  # warm up
         total, diffs, nfevs, rust_evals = 0.0, [], [], []
