@@ -4,7 +4,9 @@
 use cushion_model::{simulate, RunOptions, Scene};
 fn main() {
     let mut args = std::env::args().skip(1);
-    let path = args.next().expect("steps SCENE.toml [KEY=VALUE]... [EDGE_MS]...");
+    let path = args
+        .next()
+        .expect("steps SCENE.toml [KEY=VALUE]... [EDGE_MS]...");
     let mut scene = Scene::from_file(std::path::Path::new(&path)).expect("readable scene");
     let mut edges: Vec<f64> = Vec::new();
     for arg in args {
