@@ -152,6 +152,12 @@ impl Ringing {
         self.lambda
     }
 
+    /// The largest rate at which the amplitude can decay from `t0` on (1/s): `lambda + mu a0`,
+    /// linear and orifice damping, whose share falls with the amplitude.
+    pub fn fastest_decay_rate(&self) -> f64 {
+        self.lambda + self.mu * self.a0
+    }
+
     /// Equivalent damping ratio of the quadratic damping at the initial amplitude, `mu a0 / w0`.
     pub fn orifice_damping_ratio(&self) -> f64 {
         self.mu * self.a0 / self.w0
