@@ -321,7 +321,10 @@ impl StopRinging {
                 Some(w) if lightly_damped => w,
                 _ => period,
             };
-            self.next_ringing_check = t + wait.max(0.1 * period);
+            // (at least a quarter period on: a look costs about two steps' work, and where a
+            // robot kink's shift of the equilibrium rather than the amplitude holds the errors
+            // up, they do not fall as fast as `errors_wait` allows)
+            self.next_ringing_check = t + wait.max(0.25 * period);
             return None;
         }
         if !tail_changes_nothing(m, peaks, t, y, &seg, &last, &tail) {
