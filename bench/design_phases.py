@@ -15,6 +15,7 @@ benchmark, not a test; the figures are in `docs/performance.md` ("The design-spa
 
 import argparse
 import os
+import tomllib
 
 import numpy as np
 import pandas as pd
@@ -27,6 +28,8 @@ SCENE = os.path.join(ROOT, "sweeps/scenes/paper-hydraulic-dt70.toml")
 AXES = ["robot.dead_time", "hydraulic.gas_pressure", "hydraulic.orifice_radius", "object.mass", "module"]
 # events that are not contacts: the robot's and the sensor's, and the early end itself
 NOT_CONTACT = {"sensor", "brake", "robot_stopped", "early_end"}
+with open(SCENE, "rb") as f:
+    T_END = tomllib.load(f)["t_end"]  # s; the sweep sets no other
 
 
 def phases(point):
@@ -56,7 +59,7 @@ def main():
         r = design.iloc[i]
         point = {k: (str(r[k]) if k == "module" else float(r[k])) for k in AXES}
         before, after = phases(point)
-        cruises = not (r.t_brake < 0.3)  # no brake before t_end (NaN: the sensor never switched)
+        cruises = not (r.t_brake < T_END)  # no brake before t_end (NaN: the sensor never switched)
         rows.append(
             dict(
                 module=r.module,
