@@ -79,6 +79,12 @@ def preload_stroke(k_e=K_E):
     return -brentq(lambda d: k_e * d**1.5 - gas(-d) * A_P, 0.0, 1e-2, xtol=1e-16, rtol=1e-15)
 
 
+def initial_state(s0):
+    """The state at t = 0, (x_t, v_t, x_p, v_p): the tool at the preload stroke `s0`
+    (`preload_stroke`) riding with the cruising robot, the object GAP ahead of it at rest."""
+    return np.array([-s0, V_MAX, -s0 + GAP, 0.0])
+
+
 def cruise(t):
     return (V_MAX * t, V_MAX)
 
@@ -108,7 +114,7 @@ def after_detection(t_detect, dead_time):
 def run(dead_time, method="RK45"):
     """One run: (t_detect, final state, rhs evaluations, x_p0, accepted steps per segment)."""
     s0 = preload_stroke()
-    y = np.array([-s0, V_MAX, -s0 + GAP, 0.0])
+    y = initial_state(s0)
     nfev = 0
     steps = []
 

@@ -59,8 +59,8 @@ from scipy.optimize import minimize_scalar
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from scene_scipy import (  # noqa: E402  (the shared physics)
     A_O, A_P, B, C0, CHI_C, CHI_E, GAP, K_C, K_E, KAPPA, L, M_P, M_T, P10, R_O, RHO, T_END,
-    V_MAX, VG0, after_detection, cruise, gas, hunt_crossley, make_rhs, preload_stroke,
-    sensor_value, tool_force)
+    V_MAX, VG0, after_detection, cruise, gas, hunt_crossley, initial_state, make_rhs,
+    preload_stroke, sensor_value, tool_force)
 
 DEAD_TIME = 0.070
 K_STEEL = 1e11
@@ -95,7 +95,7 @@ class Paper:
 
     def __init__(self):
         self.s0 = preload_stroke(self.k_e)
-        self.y0 = np.array([-self.s0, V_MAX, -self.s0 + GAP, 0.0])
+        self.y0 = initial_state(self.s0)
 
     def rhs(self, robot):
         return make_rhs(robot, k_e=self.k_e)
@@ -114,7 +114,7 @@ class Steel:
 
     def __init__(self):
         self.s0 = preload_stroke(K_STEEL)
-        self.y0 = np.array([-self.s0, V_MAX, -self.s0 + GAP, 0.0])
+        self.y0 = initial_state(self.s0)
 
     def rhs(self, robot):
         return make_rhs(robot, k_e=K_STEEL)

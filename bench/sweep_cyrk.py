@@ -42,8 +42,7 @@ def peer_inputs(row):
     """(y0, args, dead time, counter) of one design run in the peer."""
     p10 = float(row["hydraulic.gas_pressure"])
     ss.P10 = p10  # preload_stroke reads the module's gas pressure
-    s0 = ss.preload_stroke()
-    y0 = np.array([-s0, ss.V_MAX, -s0 + ss.GAP, 0.0])
+    y0 = ss.initial_state(ss.preload_stroke())
     counter = np.zeros(1, np.int64)
     args = cyrk_peer.args_for(counter, p10=p10, r_o=float(row["hydraulic.orifice_radius"]),
                               m_p=float(row["object.mass"]))
