@@ -1,14 +1,13 @@
 //! Print a scene's event log (time, name, stroke): `event_log SCENE.toml [KEY=VALUE]...`.
-use cushion_model::{simulate, RunOptions, Scene};
+use cushion_model::{simulate, RunOptions};
+
+mod support;
+
 fn main() {
     let mut args = std::env::args().skip(1);
-    let mut scene = match args.next() {
-        Some(path) => Scene::from_file(std::path::Path::new(&path)).expect("readable scene"),
-        None => Scene::default(),
-    };
+    let mut scene = support::scene_from(args.next().as_deref());
     for arg in args {
-        let (k, v) = arg.split_once('=').expect("KEY=VALUE");
-        scene.set_from_str(k, v).expect("valid");
+        assert!(support::set_key(&mut scene, &arg), "{arg}: not KEY=VALUE");
     }
     let r = simulate(&scene, &RunOptions::default());
     for e in &r.events {

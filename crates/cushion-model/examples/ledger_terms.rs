@@ -1,12 +1,14 @@
 //! The energy ledger's terms at the end of a run: `ledger_terms SCENE.toml [KEY=VALUE]...`.
-use cushion_model::{simulate_with_ledger, RunOptions, Scene};
+use cushion_model::{simulate_with_ledger, RunOptions};
+
+mod support;
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args.next().expect("ledger_terms SCENE.toml [KEY=VALUE]...");
-    let mut scene = Scene::from_file(std::path::Path::new(&path)).expect("readable scene");
+    let mut scene = support::scene_from(Some(&path));
     for arg in args {
-        let (k, v) = arg.split_once('=').expect("KEY=VALUE");
-        scene.set_from_str(k, v).expect("valid");
+        assert!(support::set_key(&mut scene, &arg), "{arg}: not KEY=VALUE");
     }
     let (r, ledger) = simulate_with_ledger(&scene, &RunOptions::default());
     println!(

@@ -1,18 +1,16 @@
 //! Run one scene many times (for profilers and instruction counts):
 //! `loop_scene N [SCENE.toml] [KEY=VALUE]...` (without a file: the defaults).
-use cushion_model::{simulate, RunOptions, Scene};
+use cushion_model::{simulate, RunOptions};
+
+mod support;
+
 fn main() {
     let mut args = std::env::args().skip(1).peekable();
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
-    let mut scene = match args.peek() {
-        Some(a) if a.ends_with(".toml") => {
-            Scene::from_file(std::path::Path::new(&args.next().unwrap())).expect("readable scene")
-        }
-        _ => Scene::default(),
-    };
+    let path = args.next_if(|a| a.ends_with(".toml"));
+    let mut scene = support::scene_from(path.as_deref());
     for arg in args {
-        let (k, v) = arg.split_once('=').expect("KEY=VALUE");
-        scene.set_from_str(k, v).expect("valid");
+        assert!(support::set_key(&mut scene, &arg), "{arg}: not KEY=VALUE");
     }
     let t = std::time::Instant::now();
     let mut acc = 0.0;

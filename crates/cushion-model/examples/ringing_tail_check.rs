@@ -10,12 +10,7 @@ mod support;
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
-    let sets: Vec<(String, String)> = args
-        .map(|a| {
-            let (k, v) = a.split_once('=').expect("KEY=VALUE");
-            (k.to_string(), v.to_string())
-        })
-        .collect();
+    let sets: Vec<String> = args.collect();
     let mut u = support::Uniform::new(0x9E3779B97F4A7C15u64);
     let names = [
         "robot_impulse",
@@ -38,8 +33,8 @@ fn main() {
         s.robot.dead_time = u.span(0.0, 0.1);
         s.robot.brake_deceleration = u.span(5.0, 25.0);
         support::draw_module_axes(&mut s, &mut u);
-        for (k, v) in &sets {
-            s.set_from_str(k, v).expect("valid key");
+        for arg in &sets {
+            assert!(support::set_key(&mut s, arg), "{arg}: not KEY=VALUE");
         }
         let desc = format!(
             "--set module={} --set robot.dead_time={} --set robot.brake_deceleration={} --set hydraulic.gas_pressure={} --set hydraulic.orifice_radius={} --set object.mass={}",

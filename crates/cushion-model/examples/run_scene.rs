@@ -2,22 +2,13 @@
 //! run_scene -- [SCENE.toml] [KEY=VALUE]...`.
 use cushion_model::{simulate, RunOptions, Scene};
 
+mod support;
+
 fn main() {
     let mut scene = Scene::default();
     for arg in std::env::args().skip(1) {
-        if let Some((k, v)) = arg.split_once('=') {
-            if let Err(e) = scene.set_from_str(k, v) {
-                eprintln!("{e}");
-                std::process::exit(2);
-            }
-        } else {
-            scene = match Scene::from_file(std::path::Path::new(&arg)) {
-                Ok(s) => s,
-                Err(e) => {
-                    eprintln!("{e}");
-                    std::process::exit(2);
-                }
-            };
+        if !support::set_key(&mut scene, &arg) {
+            scene = support::scene_from(Some(&arg));
         }
     }
     let r = simulate(&scene, &RunOptions::default());

@@ -1,18 +1,20 @@
 //! Where a run spends its steps: `steps SCENE.toml [EDGE_MS]...` counts the accepted steps
 //! that end in each interval between the given times (ms), up to the early end; without
 //! edges, per 10 ms. Arguments with `=` set a scene key: `steps SCENE.toml module=bistable 5 80`.
-use cushion_model::{simulate, RunOptions, Scene};
+use cushion_model::{simulate, RunOptions};
+
+mod support;
+
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args
         .next()
         .expect("steps SCENE.toml [KEY=VALUE]... [EDGE_MS]...");
-    let mut scene = Scene::from_file(std::path::Path::new(&path)).expect("readable scene");
+    let mut scene = support::scene_from(Some(&path));
     let mut edges: Vec<f64> = Vec::new();
     for arg in args {
-        match arg.split_once('=') {
-            Some((k, v)) => scene.set_from_str(k, v).expect("valid"),
-            None => edges.push(arg.parse::<f64>().expect("a time in ms") * 1e-3),
+        if !support::set_key(&mut scene, &arg) {
+            edges.push(arg.parse::<f64>().expect("a time in ms") * 1e-3);
         }
     }
     // steps and events only: every step end, plus a point per logged event

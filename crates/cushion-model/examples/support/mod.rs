@@ -38,4 +38,25 @@ pub fn draw_module_axes(s: &mut Scene, u: &mut Uniform) {
     s.object.mass = u.span(0.05, 0.95);
 }
 
+/// The scene in the file at `path`, or the defaults without one.
+pub fn scene_from(path: Option<&str>) -> Scene {
+    path.map_or_else(Scene::default, |p| {
+        Scene::from_file(std::path::Path::new(p)).unwrap_or_else(|e| panic!("{p}: {e}"))
+    })
+}
+
+/// Set the key of a `KEY=VALUE` argument in `scene`; `false` (and `scene` unchanged) when the
+/// argument has no `=`.
+pub fn set_key(scene: &mut Scene, arg: &str) -> bool {
+    match arg.split_once('=') {
+        Some((k, v)) => {
+            scene
+                .set_from_str(k, v)
+                .unwrap_or_else(|e| panic!("{arg}: {e}"));
+            true
+        }
+        None => false,
+    }
+}
+
 pub mod wide;
