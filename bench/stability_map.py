@@ -475,7 +475,7 @@ def series_table(df: pd.DataFrame, series: str, xname: str) -> str:
     d = df[df.series == series]
     xs = sorted(d.x.unique())
     cols = [(m, None) for m in ADAPTIVE] + [(m, h) for m in FIXED for h in FIXED_STEPS]
-    out = [f"| method | " + " | ".join(f"{xname} {x:.0e}" for x in xs) + " |",
+    out = ["| method | " + " | ".join(f"{xname} {x:.0e}" for x in xs) + " |",
            "|---|" + "---|" * len(xs)]
     for m, h in cols:
         cells = []

@@ -312,10 +312,10 @@ def scipy_ivp_once(name, method, rtol, atol, budget, analytic=False):
 def ivp_samples(scene, pieces):
     """The tool's and the object's speeds at SAMPLE_TIMES from solve_ivp's dense output, (2, 99)."""
     out = np.full((2, SAMPLE_TIMES.size), np.nan)
-    for ode, _, ts in pieces:
+    for dense, _, ts in pieces:
         inside = (SAMPLE_TIMES >= ts[0]) & (SAMPLE_TIMES <= ts[-1])
         if inside.any():
-            ys = ode(SAMPLE_TIMES[inside])
+            ys = dense(SAMPLE_TIMES[inside])
             out[0, inside], out[1, inside] = ys[1], ys[scene.i_vp]
     return out
 
