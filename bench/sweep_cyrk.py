@@ -15,7 +15,7 @@ them
 It prints the time per run and the error of the object's final speed against the reference
 (median, 90th percentile, largest) for each, so that the two are compared at equal accuracy.
 
-    bash bench/setup_venv.sh && .venv/bin/pip install numba cyrk && cargo build --release
+    bash bench/setup_venv.sh && cargo build --release
     .venv/bin/python bench/sweep_cyrk.py [--sample 500]
 """
 
@@ -78,7 +78,7 @@ def main():
     args = ap.parse_args()
     peer, reason = cyrk_peer.setup(1.0, 0.0)
     if peer is None:
-        sys.exit(f"the compiled peer is {reason}: .venv/bin/pip install numba cyrk")
+        sys.exit(f"the compiled peer is {reason}: bash bench/setup_venv.sh installs numba and CyRK")
     with tempfile.TemporaryDirectory() as tmp:
         rows = design_runs(args.binary, tmp)
         step = max(1, len(rows) // args.sample)

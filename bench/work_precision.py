@@ -2,16 +2,17 @@
 """Work-precision study: error against work (wall time, right-hand-side evaluations) for the
 engine's methods and for peers, on the paper's scenes, two stiff variants and a smooth problem.
 
-    # once: the virtual environment, the extension built into it, the peers
-    bash bench/setup_venv.sh                       # or: python3 -m venv .venv && .venv/bin/pip install numpy scipy
-    .venv/bin/pip install "maturin>=1.5,<2" pandas matplotlib pyarrow numba cyrk
-    .venv/bin/maturin develop --release            # builds crates/cushion-py into .venv (minutes)
+    # once (and after changing the engine): .venv/ with SciPy, the peers (numba, CyRK) and the
+    # other benchmark dependencies of bench/requirements.txt, and this checkout's cushion
+    # package built into it by maturin (minutes)
+    bash bench/setup_venv.sh
     # the study (about 9 min on the 2-vCPU Intel VM, 1 min of it compiling CyRK; --quick: a smoke run of under a minute)
     .venv/bin/python bench/work_precision.py [--quick] [--scenes NAME...] [--no-charts]
 
 Needs numpy, scipy, pandas, matplotlib and the `cushion` package; `numba` and `CyRK` for the
 compiled peer (skipped with a note if missing; NumbaLSODA does not build here: it needs a
-Fortran compiler). Writes docs/work_precision.csv (one row per scene, method, setting and error
+Fortran compiler); bench/setup_venv.sh installs them all, at the versions of
+bench/requirements.txt. Writes docs/work_precision.csv (one row per scene, method, setting and error
 measure), docs/work_precision.json (machine, commit, date, versions, the references and their
 agreement, the interpolated tables: the time and evaluations where the error first crosses each
 level from 1e-4 to 1e-9, `at_error`, and where it crosses it for the last time, so that every
@@ -80,9 +81,12 @@ import sys
 import time
 import warnings
 
-import numpy as np
-from scipy.integrate import ode, solve_ivp
-from scipy.optimize import brentq
+try:
+    import numpy as np
+    from scipy.integrate import ode, solve_ivp
+    from scipy.optimize import brentq
+except ImportError as e:
+    sys.exit(f"{e}: the study's environment is made by `bash bench/setup_venv.sh` (then run it with .venv/bin/python)")
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
@@ -91,7 +95,10 @@ import scene_scipy as ss  # noqa: E402
 import cyrk_peer  # noqa: E402
 import stiff_scenes_scipy as sts  # noqa: E402
 
-import cushion  # noqa: E402
+try:
+    import cushion  # noqa: E402
+except ImportError as e:
+    sys.exit(f"{e}: `bash bench/setup_venv.sh` builds the package into .venv/ (then run the study with .venv/bin/python)")
 
 MEASURES = ("object_final_velocity", "peak_robot_force", "t_detect")  # read off the summary
 # the largest error of the tool's and the object's speeds (m/s) at SAMPLE_TIMES
