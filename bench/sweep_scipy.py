@@ -17,6 +17,7 @@ import csv
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -60,7 +61,7 @@ def cushion_sweep(binary, tmp, sample, rtol, atol=None, repeat=3):
     out = os.path.join(tmp, f"rust-{rtol:g}")
     best = math.inf
     for _ in range(repeat):
-        subprocess.run(["rm", "-rf", out], check=True)
+        shutil.rmtree(out, ignore_errors=True)
         subprocess.run([binary, "sweep", path, "--out", out, "--threads", "1", "--quiet"], check=True)
         with open(os.path.join(out, "provenance.json")) as f:
             best = min(best, json.load(f)["wall_seconds"])
