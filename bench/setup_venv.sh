@@ -7,13 +7,9 @@
 #     bash bench/setup_venv.sh && .venv/bin/python bench/work_precision.py
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python=${PYTHON:-python3}
-[ -x .venv/bin/python ] || "$python" -m venv .venv
-.venv/bin/python -m pip install -q --upgrade pip
+source scripts/venv.sh
+venv_create
 .venv/bin/python -m pip install -q -r bench/requirements.txt
 if [ "${1:-}" != "--no-package" ]; then
-    out=$(mktemp -d)
-    .venv/bin/maturin build --release --locked --out "$out"
-    .venv/bin/python -m pip install -q --force-reinstall --no-deps "$out"/cushion-*.whl
-    rm -rf "$out"
+    package_install "" --no-deps
 fi

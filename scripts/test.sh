@@ -11,14 +11,9 @@ cd "$(dirname "$0")/.."
 
 cargo test --workspace --locked
 
-python=${PYTHON:-python3}
-[ -x .venv/bin/python ] || "$python" -m venv .venv
-.venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q "maturin>=1.5,<2"
-rm -rf target/wheels
-.venv/bin/maturin build --release --locked --out target/wheels
-wheel=$(ls target/wheels/cushion-*.whl)
-.venv/bin/python -m pip install -q --force-reinstall "${wheel}[test]"
+source scripts/venv.sh
+venv_create
+package_install "[test]"
 
 # The Python tests compare the package with the command built by `cargo test` above.
 CUSHION_BIN="$PWD/target/debug/cushion" .venv/bin/python -m pytest tests/python -q
