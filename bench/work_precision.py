@@ -18,6 +18,7 @@ agreement, the interpolated tables: the time and evaluations where the error fir
 level from 1e-4 to 1e-9, `at_error`, and where it crosses it for the last time, so that every
 costlier setting stays below it, `at_error_settled`) and docs/figures/work-precision-{time,evals}.svg;
 prints, last, the issue's speed targets read off those tables (`target_lines`).
+`python3 bench/study_tables.py [JSON]` prints docs/performance.md's tables from the JSON.
 
 Scenes: the five paper scenes (sweeps/scenes/paper-*.toml); `steel-stops` (paper-hydraulic-dt70
 with stops.stiffness = 1e11); `compressible` (paper-hydraulic-dt70 with hydraulic.bulk_modulus =
@@ -93,6 +94,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 import scene_scipy as ss  # noqa: E402
 import cyrk_peer  # noqa: E402
+from study_tables import target_lines  # noqa: E402
 import stiff_scenes_scipy as sts  # noqa: E402
 
 try:
@@ -782,51 +784,6 @@ def interpolate(df, scene, targets, measure="object_final_velocity", settled=Fal
         out[method] = res
     return out
 
-
-ENGINE_ON = ("dp5", "dop853")
-ENGINE_OFF = ("dp5_no_ledger", "dop853_no_ledger")
-COMPILED_PEER = ("cyrk-DOP853", "cyrk-RK45")
-
-
-def fastest(row, methods, level):
-    """The fastest of `methods` at `level` in one scene's interpolated table: (seconds, method),
-    or None where none reaches it."""
-    found = [(row[m][level][0], m) for m in methods if m in row and row[m].get(level) is not None]
-    return min(found) if found else None
-
-
-def target_lines(table, table_settled):
-    """The issue's speed targets read off the interpolated tables, as lines to print: the engine
-    against SciPy's RK45 and Hairer's DOPRI5 at an error of 1e-6 on hydraulic dt70, and its
-    fastest explicit method against the compiled peer's faster one at every level (first
-    crossing; where the error stays below, in brackets)."""
-    lines = []
-    dt70 = table.get("paper-hydraulic-dt70", {})
-    rk45, best = fastest(dt70, ("RK45",), "1e-06"), fastest(dt70, ENGINE_ON, "1e-06")
-    dp5 = fastest(dt70, ("dp5",), "1e-06")
-    if rk45 and best and dp5:
-        lines.append(f"SciPy RK45 over the engine at 1e-6, hydraulic dt70: {rk45[0] / best[0]:.0f} times "
-                     f"({best[1]}), {rk45[0] / dp5[0]:.0f} times (dp5); target 500")
-    hairer = dt70.get("hairer-dopri5", {}).get("1e-06")
-    if hairer and dp5:
-        lines.append(f"evaluations at 1e-6, hydraulic dt70: dp5 {dt70['dp5']['1e-06'][1]:.0f}, "
-                     f"Hairer's DOPRI5 {hairer[1]:.0f}; target: no more")
-    for name in table:
-        if not any(m in table[name] for m in COMPILED_PEER):
-            continue
-        for level in table[name]["dp5"]:
-            cells = []
-            for t in (table, table_settled):
-                peer = fastest(t[name], COMPILED_PEER, level)
-                on, off = fastest(t[name], ENGINE_ON, level), fastest(t[name], ENGINE_OFF, level)
-                if peer is None or on is None:
-                    cells.append("-")
-                    continue
-                ratio = lambda e: "-" if e is None else f"{e[0] / peer[0]:.2f}"
-                cells.append(f"{on[0] * 1e6:.0f} us ({on[1]}) / {peer[0] * 1e6:.0f} us ({peer[1]}) = "
-                             f"{ratio(on)}, ledger off {ratio(off)}")
-            lines.append(f"{name} {level}: {cells[0]}   [{cells[1]}]")
-    return lines
 
 
 def machine_info():
