@@ -77,9 +77,14 @@ struct Outcome {
     stats: Stats,
 }
 
-fn run<const N: usize>(system: &mut Observed, opts: &SolverOptions, t_end: f64) -> Outcome {
-    let y0 = State::<N>::from_column_slice(&system.model.y0);
-    let sol = cushion_ode::solve(system, 0.0, y0, t_end, opts);
+fn run<const N: usize>(
+    system: &mut Observed,
+    opts: &SolverOptions,
+    (t0, y0): (f64, &[f64]),
+    t_end: f64,
+) -> Outcome {
+    let y0 = State::<N>::from_column_slice(y0);
+    let sol = cushion_ode::solve(system, t0, y0, t_end, opts);
     Outcome {
         status: sol.status,
         message: sol.message,
@@ -87,6 +92,26 @@ fn run<const N: usize>(system: &mut Observed, opts: &SolverOptions, t_end: f64) 
         y: sol.y.as_slice().to_vec(),
         stats: sol.stats,
     }
+}
+
+/// After a ringing tail that ends at the robot's stop (`RingingTail::resume`): the tail played
+/// to there (the robot's stop in its profile and the event log, the energy ledger's work and
+/// losses over it added, the trajectory's points taken), and the time and state the run is
+/// integrated on from. `None` when the run has ended.
+fn resume_after_tail(system: &mut Observed, out: &Outcome, rtol: f64) -> Option<(f64, Vec<f64>)> {
+    if out.status != Status::StoppedByEvent {
+        return None;
+    }
+    let early_end = system.early_end.as_mut()?;
+    let tail = early_end.tail.take_if(|tail| tail.resumes())?;
+    system.peaks.before_time_stop(&system.model);
+    let (ts, mut y) = tail.resume(&mut system.model, &out.y)?;
+    tail::add_to_ledger(&system.model, &tail, &out.y, ts, rtol, &mut y);
+    if let Some(recorder) = system.recorder.as_mut() {
+        recorder.record_tail(&system.model, &tail, &out.y, ts);
+        recorder.take_events(&system.model);
+    }
+    Some((ts, y))
 }
 
 /// The integrator settings of a scene.
@@ -153,29 +178,40 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     };
     let sopts = solver_options(scene);
     let t_end = scene.t_end;
-    let out = match system.model.layout.n.max(1) {
-        1 => run::<1>(&mut system, &sopts, t_end),
-        2 => run::<2>(&mut system, &sopts, t_end),
-        3 => run::<3>(&mut system, &sopts, t_end),
-        4 => run::<4>(&mut system, &sopts, t_end),
-        5 => run::<5>(&mut system, &sopts, t_end),
-        6 => run::<6>(&mut system, &sopts, t_end),
-        7 => run::<7>(&mut system, &sopts, t_end),
-        8 => run::<8>(&mut system, &sopts, t_end),
-        9 => run::<9>(&mut system, &sopts, t_end),
-        10 => run::<10>(&mut system, &sopts, t_end),
-        11 => run::<11>(&mut system, &sopts, t_end),
-        12 => run::<12>(&mut system, &sopts, t_end),
-        13 => run::<13>(&mut system, &sopts, t_end),
-        n => {
-            let r = RunResult {
-                summary: Summary::invalid(format!(
-                    "internal error: {n} states (at most {MAX_STATES})"
-                )),
-                trajectory: None,
-                events: Vec::new(),
-            };
-            return (r, None);
+    // a tail that ends at the robot's stop is followed by a second solve from there
+    let mut start = (0.0, system.model.y0.clone());
+    let mut stats = Stats::default();
+    let out = loop {
+        let from = (start.0, start.1.as_slice());
+        let out = match system.model.layout.n.max(1) {
+            1 => run::<1>(&mut system, &sopts, from, t_end),
+            2 => run::<2>(&mut system, &sopts, from, t_end),
+            3 => run::<3>(&mut system, &sopts, from, t_end),
+            4 => run::<4>(&mut system, &sopts, from, t_end),
+            5 => run::<5>(&mut system, &sopts, from, t_end),
+            6 => run::<6>(&mut system, &sopts, from, t_end),
+            7 => run::<7>(&mut system, &sopts, from, t_end),
+            8 => run::<8>(&mut system, &sopts, from, t_end),
+            9 => run::<9>(&mut system, &sopts, from, t_end),
+            10 => run::<10>(&mut system, &sopts, from, t_end),
+            11 => run::<11>(&mut system, &sopts, from, t_end),
+            12 => run::<12>(&mut system, &sopts, from, t_end),
+            13 => run::<13>(&mut system, &sopts, from, t_end),
+            n => {
+                let r = RunResult {
+                    summary: Summary::invalid(format!(
+                        "internal error: {n} states (at most {MAX_STATES})"
+                    )),
+                    trajectory: None,
+                    events: Vec::new(),
+                };
+                return (r, None);
+            }
+        };
+        stats += out.stats;
+        match resume_after_tail(&mut system, &out, scene.solver.rtol) {
+            Some(resume) => start = resume,
+            None => break Outcome { stats, ..out },
         }
     };
     let Observed {

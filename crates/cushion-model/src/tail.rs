@@ -179,6 +179,28 @@ impl Tail {
         y
     }
 
+    /// Whether the run is integrated again after this tail (`RingingTail::resume`).
+    pub fn resumes(&self) -> bool {
+        matches!(&self.kind, TailKind::Ringing(r) if r.resume.is_some())
+    }
+
+    /// Where the integration resumes after a tail that ends before the run does (the robot's
+    /// stop, `RingingTail::resume`), and the state there; `None` for a tail that ends the run.
+    /// The robot's stop goes into its profile and the event log, as the integrated run's time
+    /// stop puts it there.
+    pub fn resume(&self, m: &mut Model, y_te: &[f64]) -> Option<(f64, Vec<f64>)> {
+        let TailKind::Ringing(RingingTail {
+            resume: Some(ts), ..
+        }) = &self.kind
+        else {
+            return None;
+        };
+        let ts = *ts;
+        m.robot.on_time(ts);
+        self.log(m, "robot_stopped", y_te, ts);
+        Some((ts, self.state_at(m, y_te, ts)))
+    }
+
     /// The ringing's sample spacing for a trajectory without uniform samples: 16 points per
     /// period (`None` for the other kinds, whose tail is a straight line).
     pub fn ringing_spacing(&self) -> Option<f64> {
@@ -312,6 +334,7 @@ mod tests {
                 pieces: vec![piece],
                 brake: None,
                 stop: None,
+                resume: None,
             }),
         };
         assert_eq!(tail.robot_work(&m, t_end), 0.0);

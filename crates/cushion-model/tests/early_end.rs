@@ -290,6 +290,96 @@ fn ringing_tail_equals_running_to_t_end() {
 }
 
 #[test]
+fn a_tail_up_to_the_robots_stop_equals_running_through_it() {
+    // At tight tolerances the robot's stop shakes the tool too much for the closed form (the
+    // new equilibrium lies further from the ringing than the amplitude limit allows), so the
+    // ringing is written in closed form only while the robot brakes, and integrated again from
+    // its stop (`RingingTail::resume`). Against the same runs integrated throughout: the same
+    // summary within the tolerance, events and counts; the energy residual within 5 rtol; no
+    // step inside the closed form's stretch; its uniform samples on the integrated ringing
+    // to 1 % of the stop's depth.
+    let robot_stop = 0.174_580_391;
+    for (method, rtol) in [("dp5", 1e-7), ("dop853", 1e-7), ("dp5", 3e-8)] {
+        let s = with(
+            paper("paper-hydraulic-dt70"),
+            &[
+                ("solver.method", method),
+                ("solver.rtol", &rtol.to_string()),
+                ("solver.atol", &(rtol / 1000.0).to_string()),
+            ],
+        );
+        let what = format!("{method} rtol {rtol}");
+        let tail = run_traj(&s, 1e-3);
+        let full = run_traj(&with(s.clone(), &[("solver.ringing_tail", "false")]), 1e-3);
+        let (a, b) = (&tail.summary, &full.summary);
+        assert_same(a, b, 10.0 * rtol, &what);
+        // the tail's admission predicts its impulse error within rtol of the momentum scale;
+        // the prediction is good to a factor of two or so (the tail taken after the robot's
+        // stop, at 3e-8, leaves 1.25 of it)
+        let momentum_scale = (s.tool.mass + s.object.mass) * s.robot.approach_speed;
+        assert!(
+            (a.robot_impulse - b.robot_impulse).abs() <= 2.0 * rtol * momentum_scale,
+            "{what}: impulse {} vs {}",
+            a.robot_impulse,
+            b.robot_impulse
+        );
+        assert!(
+            a.energy_residual.unwrap().abs() <= 5.0 * rtol,
+            "{what}: {:?}",
+            a.energy_residual
+        );
+        let names = |r: &RunResult| -> Vec<(String, f64)> {
+            r.events
+                .iter()
+                .filter(|e| e.name != "early_end")
+                .map(|e| (e.name.clone(), e.t))
+                .collect()
+        };
+        let (na, nb) = (names(&tail), names(&full));
+        assert_eq!(na.len(), nb.len(), "{what}: {na:?} vs {nb:?}");
+        for ((x, tx), (y, ty)) in na.iter().zip(nb.iter()) {
+            assert!(
+                x == y && (tx - ty).abs() <= 1e-9,
+                "{what}: {x} {tx} vs {y} {ty}"
+            );
+        }
+        // before the robot's stop, a stretch of at least a period of the ringing (12.8 ms)
+        // with only uniform samples (every 1 ms) in the tail's run, where the integrated run
+        // has its step ends too
+        let pa = &tail.trajectory.unwrap().points;
+        let pb = &full.trajectory.unwrap().points;
+        let off_grid =
+            |p: &&cushion_model::TrajectoryPoint| ((p.t / 1e-3).round() * 1e-3 - p.t).abs() > 1e-12;
+        let last_step = pa
+            .iter()
+            .filter(|p| p.t < robot_stop - 1e-6)
+            .filter(off_grid)
+            .fold(0.0_f64, |t, p| t.max(p.t));
+        assert!(
+            robot_stop - last_step > 0.0128,
+            "{what}: last step at {last_step}"
+        );
+        let window =
+            |p: &&cushion_model::TrajectoryPoint| p.t > last_step && p.t < robot_stop - 1e-6;
+        assert!(
+            pb.iter().filter(window).filter(off_grid).count() > 5,
+            "{what}"
+        );
+        let mut compared = 0;
+        for p in pa.iter().filter(window) {
+            let q = pb.iter().find(|q| q.t == p.t).expect("the same sample");
+            assert!(
+                (p.s - q.s).abs() < 0.01 * q.s.abs(),
+                "{what}: t = {}: {p:?} vs {q:?}",
+                p.t
+            );
+            compared += 1;
+        }
+        assert!(compared >= 12, "{what}: {compared} samples");
+    }
+}
+
+#[test]
 fn ringing_tail_is_not_taken_where_it_cannot_hold() {
     // dry friction (stick-slip) and the rigid module keep integrating; so does a tight
     // tolerance until the ringing is small enough for it

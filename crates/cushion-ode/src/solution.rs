@@ -58,6 +58,23 @@ pub struct Stats {
     pub stiff_since: Option<f64>,
 }
 
+/// The work of two solves in a row (a run integrated again from where the first one stopped).
+impl std::ops::AddAssign for Stats {
+    fn add_assign(&mut self, later: Stats) {
+        self.steps += later.steps;
+        self.rejected += later.rejected;
+        self.rhs_evals += later.rhs_evals;
+        self.jacobian_evals += later.jacobian_evals;
+        self.lu_decompositions += later.lu_decompositions;
+        self.failed_solves += later.failed_solves;
+        self.method_switches += later.method_switches;
+        self.events += later.events;
+        self.time_stops += later.time_stops;
+        self.stiff |= later.stiff;
+        self.stiff_since = self.stiff_since.or(later.stiff_since);
+    }
+}
+
 /// One entry of the event log.
 #[derive(Clone, Debug, PartialEq)]
 pub struct EventRecord<const N: usize> {

@@ -61,39 +61,52 @@ impl Recorder {
         self.points.push(to_point(t1, &e1));
     }
 
+    /// The tail's points in `(tail.t, t_to)` (`y_te`: the state where the tail begins): its
+    /// uniform samples, or without them a ringing tail's 16 points per period. The uniform
+    /// samples go on after `t_to` where the integration resumes there.
+    pub fn record_tail(&mut self, model: &Model, tail: &Tail, y_te: &[f64], t_to: f64) {
+        let te = tail.t;
+        let spacing = match (self.sample_interval, tail.ringing_spacing()) {
+            (Some(dt), _) => Some((dt, (self.next_sample / dt).round() as u64)),
+            (None, Some(dt)) => Some((dt, (te / dt).floor() as u64 + 1)),
+            (None, None) => None,
+        };
+        let Some((dt, mut k)) = spacing else {
+            return;
+        };
+        loop {
+            let ts = k as f64 * dt;
+            if ts >= t_to {
+                break;
+            }
+            if ts > te {
+                self.points
+                    .push(model.point_at(ts, &tail.state_at(model, y_te, ts)));
+            }
+            k += 1;
+        }
+        if self.sample_interval.is_some() {
+            self.n_samples = k.saturating_sub(1);
+            self.next_sample = k as f64 * dt;
+        }
+    }
+
     /// The recorded trajectory of a finished run whose final point is `end`. After an early end
     /// the uniform samples up to `t_end` come from the tail (`y_te`: the state at the early
     /// end); without uniform samples, a ringing tail is drawn with 16 points per period.
     pub fn finish(
-        self,
+        mut self,
         model: &Model,
         tail: Option<&Tail>,
         y_te: &[f64],
         t_end: f64,
         end: TrajectoryPoint,
     ) -> Trajectory {
-        let mut pts = self.points;
         if let Some(tail) = tail {
-            let te = tail.t;
-            let spacing = match (self.sample_interval, tail.ringing_spacing()) {
-                (Some(dt), _) => Some((dt, (self.next_sample / dt).round() as u64)),
-                (None, Some(dt)) => Some((dt, (te / dt).floor() as u64 + 1)),
-                (None, None) => None,
-            };
-            if let Some((dt, mut k)) = spacing {
-                loop {
-                    let ts = k as f64 * dt;
-                    if ts >= t_end {
-                        break;
-                    }
-                    if ts > te {
-                        pts.push(model.point_at(ts, &tail.state_at(model, y_te, ts)));
-                    }
-                    k += 1;
-                }
-            }
-            pts.push(end);
+            self.record_tail(model, tail, y_te, t_end);
+            self.points.push(end);
         }
+        let mut pts = self.points;
         pts.sort_by(|a, b| a.t.total_cmp(&b.t));
         // Keep both sides of a jump (kinks of the robot profile); drop exact duplicates.
         pts.dedup_by(|b, a| {
