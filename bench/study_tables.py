@@ -39,9 +39,9 @@ def level_name(level):
     return f"{mantissa}e{int(exponent)}"
 
 
-def duration(seconds):
-    """µs below 10 ms, ms above."""
-    if seconds < 0.01:
+def duration(seconds, least_ms=0.01):
+    """µs below `least_ms` seconds, ms above."""
+    if seconds < least_ms:
         return f"{seconds * 1e6:,.0f} µs"
     ms = seconds * 1e3
     return f"{ms:,.1f} ms" if ms < 1000 else f"{ms:,.0f} ms"
@@ -92,7 +92,7 @@ def peer_table(table):
             rk45 = row.get("RK45", {}).get(level)
             lines.append(f"| {name} | {level_name(level)} | {cell(row, ENGINE_ON, level)} | "
                          f"{cell(row, ENGINE_OFF, level)} | {cell(row, COMPILED_PEER, level)} | "
-                         f"{'not reached' if rk45 is None else duration(rk45[0])} |")
+                         f"{'not reached' if rk45 is None else duration(rk45[0], least_ms=0.0)} |")
     return lines
 
 
