@@ -6,9 +6,10 @@
 Reads the interpolated tables `bench/work_precision.py` writes (`at_error`: where the object's
 final speed error first crosses each level; `at_error_settled`: where it crosses it for the last
 time), and prints, in Markdown: time and evaluations per method at 1e-6 and 1e-9 on hydraulic
-dt70; the engine's fastest explicit method against the compiled peer and SciPy's RK45 at every
-level on each scene the peer runs; the steel stops read both ways; and the issue's targets
-(`target_lines`, which the study also prints at the end of its run). Standard library only.
+dt70; dop853's time over dp5's per scene and level; the engine's fastest explicit method
+against the compiled peer and SciPy's RK45 at every level on each scene the peer runs; the
+steel stops read both ways; and the issue's targets (`target_lines`, which the study also
+prints at the end of its run). Standard library only.
 """
 
 import json
@@ -96,6 +97,21 @@ def peer_table(table):
     return lines
 
 
+def order_table(table):
+    """dop853's time over dp5's at each level, per scene that runs both (first crossing)."""
+    lines = ["| scene | " + " | ".join(level_name(k) for k in LEVELS) + " |",
+             "|---|" + "---|" * len(LEVELS)]
+    for name, row in table.items():
+        if "dp5" not in row or "dop853" not in row:
+            continue
+        cells = []
+        for level in LEVELS:
+            a, b = row["dop853"].get(level), row["dp5"].get(level)
+            cells.append("-" if a is None or b is None else f"{a[0] / b[0]:.2f}")
+        lines.append(f"| {name} | " + " | ".join(cells) + " |")
+    return lines
+
+
 def two_readings(table, settled, name):
     """First crossing / settled, per level, for one scene."""
     lines = ["| error | cushion, ledger on | ledger off | CyRK + numba |", "|---|---|---|---|"]
@@ -151,6 +167,8 @@ def main():
     if "paper-hydraulic-dt70" in table:
         print("paper-hydraulic-dt70, object final speed: time per run and evaluations\n")
         print("\n".join(dt70_table(table)) + "\n")
+    print("dop853's time over dp5's, first crossing\n")
+    print("\n".join(order_table(table)) + "\n")
     print("The engine's fastest explicit method against the compiled peer's, first crossing\n")
     print("\n".join(peer_table(table)) + "\n")
     if "steel-stops" in table:
