@@ -1,6 +1,8 @@
 //! Where a run spends its steps: `steps SCENE.toml [EDGE_MS]...` counts the accepted steps
 //! that end in each interval between the given times (ms), up to the early end; without
 //! edges, per 10 ms. Arguments with `=` set a scene key: `steps SCENE.toml module=bistable 5 80`.
+//! (A ringing tail that ends at the robot's stop, where the run is integrated again, leaves
+//! its trajectory points, 16 a period, among the steps it counts; the total is the solver's.)
 use cushion_model::{simulate, RunOptions};
 
 mod support;
