@@ -94,6 +94,32 @@ fn run<const N: usize>(
     }
 }
 
+/// One solve from `(t0, y0)` over a state of the layout's size (the integrator is generic over
+/// it); `Err(n)` for a layout of more states than it is built for.
+fn solve_from(
+    system: &mut Observed,
+    opts: &SolverOptions,
+    from: (f64, &[f64]),
+    t_end: f64,
+) -> Result<Outcome, usize> {
+    Ok(match system.model.layout.n.max(1) {
+        1 => run::<1>(system, opts, from, t_end),
+        2 => run::<2>(system, opts, from, t_end),
+        3 => run::<3>(system, opts, from, t_end),
+        4 => run::<4>(system, opts, from, t_end),
+        5 => run::<5>(system, opts, from, t_end),
+        6 => run::<6>(system, opts, from, t_end),
+        7 => run::<7>(system, opts, from, t_end),
+        8 => run::<8>(system, opts, from, t_end),
+        9 => run::<9>(system, opts, from, t_end),
+        10 => run::<10>(system, opts, from, t_end),
+        11 => run::<11>(system, opts, from, t_end),
+        12 => run::<12>(system, opts, from, t_end),
+        13 => run::<13>(system, opts, from, t_end),
+        n => return Err(n),
+    })
+}
+
 /// After a ringing tail that ends at the robot's stop (`RingingTail::resume`): the tail played
 /// to there (the robot's stop in its profile and the event log, the energy ledger's work and
 /// losses over it added, the trajectory's points taken), and the time and state the run is
@@ -182,22 +208,9 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     let mut start = (0.0, system.model.y0.clone());
     let mut stats = Stats::default();
     let out = loop {
-        let from = (start.0, start.1.as_slice());
-        let out = match system.model.layout.n.max(1) {
-            1 => run::<1>(&mut system, &sopts, from, t_end),
-            2 => run::<2>(&mut system, &sopts, from, t_end),
-            3 => run::<3>(&mut system, &sopts, from, t_end),
-            4 => run::<4>(&mut system, &sopts, from, t_end),
-            5 => run::<5>(&mut system, &sopts, from, t_end),
-            6 => run::<6>(&mut system, &sopts, from, t_end),
-            7 => run::<7>(&mut system, &sopts, from, t_end),
-            8 => run::<8>(&mut system, &sopts, from, t_end),
-            9 => run::<9>(&mut system, &sopts, from, t_end),
-            10 => run::<10>(&mut system, &sopts, from, t_end),
-            11 => run::<11>(&mut system, &sopts, from, t_end),
-            12 => run::<12>(&mut system, &sopts, from, t_end),
-            13 => run::<13>(&mut system, &sopts, from, t_end),
-            n => {
+        let out = match solve_from(&mut system, &sopts, (start.0, &start.1), t_end) {
+            Ok(out) => out,
+            Err(n) => {
                 let r = RunResult {
                     summary: Summary::invalid(format!(
                         "internal error: {n} states (at most {MAX_STATES})"
