@@ -166,6 +166,25 @@ fn a_cruising_robot_does_not_end_early_before_an_object_it_will_reach() {
     assert_eq!(early.summary, full.summary);
 }
 
+/// The same events at the same times (to 1 ns), but for the early end itself.
+fn assert_same_events(tail: &RunResult, full: &RunResult, what: &str) {
+    let names = |r: &RunResult| -> Vec<(String, f64)> {
+        r.events
+            .iter()
+            .filter(|e| e.name != "early_end")
+            .map(|e| (e.name.clone(), e.t))
+            .collect()
+    };
+    let (na, nb) = (names(tail), names(full));
+    assert_eq!(na.len(), nb.len(), "{what}: {na:?} vs {nb:?}");
+    for ((x, tx), (y, ty)) in na.iter().zip(nb.iter()) {
+        assert!(
+            x == y && (tx - ty).abs() <= 1e-9,
+            "{what}: {x} {tx} vs {y} {ty}"
+        );
+    }
+}
+
 #[test]
 fn ringing_tail_equals_running_to_t_end() {
     // The tool's ringing on its stop, written in closed form once it is small, against the
@@ -245,21 +264,7 @@ fn ringing_tail_equals_running_to_t_end() {
             0.0
         ));
         // the same events (the robot's stop inside the tail included), at the same times
-        let names = |r: &RunResult| -> Vec<(String, f64)> {
-            r.events
-                .iter()
-                .filter(|e| e.name != "early_end")
-                .map(|e| (e.name.clone(), e.t))
-                .collect()
-        };
-        let (na, nb) = (names(&tail), names(&full));
-        assert_eq!(na.len(), nb.len(), "{what}: {na:?} vs {nb:?}");
-        for ((x, tx), (y, ty)) in na.iter().zip(nb.iter()) {
-            assert!(
-                x == y && (tx - ty).abs() <= 1e-9,
-                "{what}: {x} {tx} vs {y} {ty}"
-            );
-        }
+        assert_same_events(&tail, &full, &what);
         // the uniform samples after the early end follow the integrated ringing to 1 % of the
         // stop's depth (stroke), of the depth times 1000 /s (tool speed; the ringing is at
         // ~500 rad/s) and 2 % of the stop's preload force (force on the robot)
@@ -328,21 +333,7 @@ fn a_tail_up_to_the_robots_stop_equals_running_through_it() {
             "{what}: {:?}",
             a.energy_residual
         );
-        let names = |r: &RunResult| -> Vec<(String, f64)> {
-            r.events
-                .iter()
-                .filter(|e| e.name != "early_end")
-                .map(|e| (e.name.clone(), e.t))
-                .collect()
-        };
-        let (na, nb) = (names(&tail), names(&full));
-        assert_eq!(na.len(), nb.len(), "{what}: {na:?} vs {nb:?}");
-        for ((x, tx), (y, ty)) in na.iter().zip(nb.iter()) {
-            assert!(
-                x == y && (tx - ty).abs() <= 1e-9,
-                "{what}: {x} {tx} vs {y} {ty}"
-            );
-        }
+        assert_same_events(&tail, &full, &what);
         // before the robot's stop, a stretch of at least a period of the ringing (12.8 ms)
         // with only uniform samples (every 1 ms) in the tail's run, where the integrated run
         // has its step ends too
