@@ -785,7 +785,6 @@ def interpolate(df, scene, targets, measure="object_final_velocity", settled=Fal
     return out
 
 
-
 def machine_info():
     info = {"date": datetime.datetime.now().astimezone().isoformat(timespec="seconds")}
     try:

@@ -321,7 +321,10 @@ impl StopRinging {
             let t_stop = last.stop_time();
             if t_stop < m.t_end {
                 let stopped = last.stopped_at(t_stop);
-                if !self.extend_tail(m, &mut tail, y, &stopped) {
+                if self.extend_tail(m, &mut tail, y, &stopped) {
+                    tail.stop = Some(t_stop);
+                    last = stopped;
+                } else {
                     // the closed form as far as the robot's stop, where the integration
                     // resumes, if the braking robot is left alone long enough to pay for the
                     // restart, and the ringing is as lightly damped as where the error model
@@ -340,10 +343,6 @@ impl StopRinging {
                     let (s_stop, _) = tail.stroke_at(t_stop);
                     let lin = self.linearisation(m, t_stop, y, &stopped, stopped.a, s_stop)?;
                     resumed_decay = (-lin.coef.linear_decay() * (m.t_end - t_stop)).exp();
-                }
-                if tail.resume.is_none() {
-                    tail.stop = Some(t_stop);
-                    last = stopped;
                 }
             }
         }

@@ -129,7 +129,9 @@ fn resume_after_tail(system: &mut Observed, out: &Outcome, rtol: f64) -> Option<
         return None;
     }
     let early_end = system.early_end.as_mut()?;
-    let tail = early_end.tail.take_if(|tail| tail.resumes())?;
+    let tail = early_end
+        .tail
+        .take_if(|tail| tail.resume_time().is_some())?;
     system.peaks.before_time_stop(&system.model);
     let (ts, mut y) = tail.resume(&mut system.model, &out.y)?;
     tail::add_to_ledger(&system.model, &tail, &out.y, ts, rtol, &mut y);

@@ -166,8 +166,7 @@ impl Tail {
             self.log(m, "brake", y_te, tb);
         }
         if let Some(ts) = stop {
-            m.robot.on_time(ts);
-            self.log(m, "robot_stopped", y_te, ts);
+            self.stop_robot(m, y_te, ts);
         }
         let y = self.state_at(m, y_te, t_end);
         let point = m.point_at(te, y_te);
@@ -179,26 +178,29 @@ impl Tail {
         y
     }
 
-    /// Whether the run is integrated again after this tail (`RingingTail::resume`).
-    pub fn resumes(&self) -> bool {
-        matches!(&self.kind, TailKind::Ringing(r) if r.resume.is_some())
+    /// Where the run is integrated again after this tail (`RingingTail::resume`: the robot's
+    /// stop); `None` for a tail that ends the run.
+    pub fn resume_time(&self) -> Option<f64> {
+        match &self.kind {
+            TailKind::Ringing(r) => r.resume,
+            _ => None,
+        }
     }
 
-    /// Where the integration resumes after a tail that ends before the run does (the robot's
-    /// stop, `RingingTail::resume`), and the state there; `None` for a tail that ends the run.
-    /// The robot's stop goes into its profile and the event log, as the integrated run's time
-    /// stop puts it there.
+    /// Where the integration resumes after a tail that ends before the run does, and the state
+    /// there; `None` for a tail that ends the run. The robot's stop goes into its profile and
+    /// the event log, as the integrated run's time stop puts it there.
     pub fn resume(&self, m: &mut Model, y_te: &[f64]) -> Option<(f64, Vec<f64>)> {
-        let TailKind::Ringing(RingingTail {
-            resume: Some(ts), ..
-        }) = &self.kind
-        else {
-            return None;
-        };
-        let ts = *ts;
+        let ts = self.resume_time()?;
+        self.stop_robot(m, y_te, ts);
+        Some((ts, self.state_at(m, y_te, ts)))
+    }
+
+    /// The robot stands at `ts`, inside the tail or where it ends: into its profile and the
+    /// event log, with the tail's state there.
+    fn stop_robot(&self, m: &mut Model, y_te: &[f64], ts: f64) {
         m.robot.on_time(ts);
         self.log(m, "robot_stopped", y_te, ts);
-        Some((ts, self.state_at(m, y_te, ts)))
     }
 
     /// The ringing's sample spacing for a trajectory without uniform samples: 16 points per
