@@ -13,6 +13,7 @@
 pub(crate) mod early_end;
 pub(crate) mod peak_sampler;
 pub(crate) mod recorder;
+mod top_step;
 
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 

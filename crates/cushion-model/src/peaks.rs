@@ -16,7 +16,7 @@
 
 use crate::model::{Eval, Model, Regime, MAX_STATES};
 use crate::physics::Segment;
-use cushion_ode::DenseOutput;
+use cushion_ode::{DenseOutput, State};
 
 /// Samples of the physics per step (besides its start).
 pub(crate) const K: usize = 4;
@@ -32,9 +32,16 @@ pub(crate) struct KeptStep {
     pub dense: DenseOutput<MAX_DYNAMIC>,
     pub seg: Segment,
     pub regime: Regime,
+    /// Whether its dense output is stable (`cushion_ode::Step::dense_stable`).
+    pub dense_stable: bool,
 }
 
 impl KeptStep {
+    /// The states the physics reads at the step's start.
+    pub fn start(&self) -> State<MAX_DYNAMIC> {
+        self.dense.eval(self.dense.t0)
+    }
+
     /// The physics at `t` on the step's dense output, in the segment and regime the step ran
     /// in (the quadratures after the kept states, which no force reads, are zero).
     pub fn eval(&self, model: &Model, t: f64) -> Eval {
@@ -209,6 +216,28 @@ pub(crate) fn search(
         (right.0, right.1, Side::After)
     } else {
         (left.0, left.1, Side::Before)
+    }
+}
+
+/// The top of `value` in the bracket `b`, searched on `behind` before `split` and on `here`
+/// from it ([`search`]), with what is reported for it where it was found.
+#[inline(always)]
+pub(crate) fn locate_on(
+    b: Bracket,
+    split: f64,
+    value: impl Fn(&Eval) -> (f64, f64),
+    here: impl Fn(f64) -> Eval,
+    behind: impl Fn(f64) -> Eval,
+) -> Peak {
+    let (t, v, side) = search(b, split, |t| value(&behind(t)).0, |t| value(&here(t)).0);
+    let e = match side {
+        Side::Before => behind(t),
+        Side::After => here(t),
+    };
+    Peak {
+        t,
+        value: v,
+        reported: value(&e).1,
     }
 }
 

@@ -39,6 +39,14 @@ pub const STABILITY_BOUNDARY: f64 = 6.393_651_522_851_909;
 /// as [`crate::stiffness::THRESHOLD`] is of DOPRI5's (the code DOP853 itself tests 6.1).
 pub const STIFFNESS_THRESHOLD: f64 = 0.9 * STABILITY_BOUNDARY;
 
+/// Where DOP853's continuous extension stops being stable on the negative real axis: for
+/// `y' = lambda y`, `max |P(theta, z)|` over the step is 0.953 at `z = -5`, then 3.2 at `-5.5`
+/// and 10.5 at `-6` (at `theta` about 0.83), while the step's own `|R(z)|` stays below 0.5.
+/// A step held by stability (`h |lambda|` near 6.4) has a dense output that amplifies a fast
+/// mode's deviation many times inside it
+/// (`tests/dop853.rs::the_dense_output_is_stable_up_to_its_boundary_and_not_beyond`).
+pub const DENSE_STABILITY_BOUNDARY: f64 = 5.0;
+
 /// `y + h (a_1 k_1 + a_2 k_2 + ...)`, the sum in the code's order, component by component.
 #[inline(always)]
 fn stage_input<const N: usize, const M: usize>(
@@ -109,6 +117,10 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
 
     fn stiffness_threshold(&self) -> f64 {
         STIFFNESS_THRESHOLD
+    }
+
+    fn dense_stability_boundary(&self) -> f64 {
+        DENSE_STABILITY_BOUNDARY
     }
 
     #[inline]

@@ -288,7 +288,17 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             } else {
                 limited_streak = 0;
             }
-            if let Some(end) = self.observe_stiffness(stepper, &mut stiffness, t, h, &attempt) {
+            // Hairer's estimate of h |lambda|, for the stiffness test and for whether the
+            // dense output is stable on this step (DOP853's is not near its boundary)
+            let dense_bound = stepper.dense_stability_boundary();
+            let h_lambda = if self.opts.stiffness != StiffnessAction::Off || dense_bound.is_finite()
+            {
+                stepper.stiffness_estimate(h, &attempt)
+            } else {
+                None
+            };
+            let dense_stable = crate::stiffness::dense_stable(h_lambda, dense_bound);
+            if let Some(end) = self.observe_stiffness(&mut stiffness, t, h, h_lambda, &attempt) {
                 return end;
             }
 
@@ -321,6 +331,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     y0: &y,
                     y1: &y_end,
                     dense: &dense,
+                    dense_stable,
                 },
                 &mut ctl,
             );
@@ -456,20 +467,21 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         Tried::Accepted(h_new)
     }
 
-    /// Hairer's stiffness test on an accepted step from `t` of size `h`; the run's end when the
-    /// options say to stop on stiffness.
-    fn observe_stiffness<M: Stepper<N>>(
+    /// Hairer's stiffness test on an accepted step from `t` of size `h`, with the method's
+    /// estimate `h_lambda` of `h |lambda|`; the run's end when the options say to stop on
+    /// stiffness.
+    fn observe_stiffness(
         &mut self,
-        stepper: &M,
         stiffness: &mut StiffnessDetector,
         t: f64,
         h: f64,
+        h_lambda: Option<f64>,
         attempt: &Attempt<N>,
     ) -> Option<(Status, String)> {
         if self.opts.stiffness == StiffnessAction::Off {
             return None;
         }
-        let since = stiffness.observe(t, stepper.stiffness_estimate(h, attempt)?)?;
+        let since = stiffness.observe(t, h_lambda?)?;
         if !self.stats.stiff {
             self.stats.stiff = true;
             self.stats.stiff_since = Some(since);

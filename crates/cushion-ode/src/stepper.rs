@@ -124,6 +124,16 @@ pub trait Stepper<const N: usize> {
     fn stiffness_threshold(&self) -> f64 {
         crate::stiffness::THRESHOLD
     }
+    /// The largest `h |lambda|` on the negative real axis up to which the dense output is
+    /// stable: `|P(theta, -x)| <= 1` for every `theta` in the step, `P` being what it makes of
+    /// `y' = lambda y`. Infinite (the default) where it is stable wherever the step is:
+    /// DOPRI5's stays within the step's own `|R(z)|` up to its stability boundary, and the
+    /// implicit methods' are built for stiff steps. DOP853's is finite
+    /// ([`crate::dop853::DENSE_STABILITY_BOUNDARY`]).
+    #[inline]
+    fn dense_stability_boundary(&self) -> f64 {
+        f64::INFINITY
+    }
     /// The last attempt was accepted: the next starts from a new point.
     #[inline]
     fn accepted(&mut self) {}

@@ -299,3 +299,115 @@ fn a_non_finite_trial_stage_is_rejected_and_retried_smaller() {
     assert!(sol.stats.rejected >= 1);
     assert!((sol.y[0] - (-5f64).exp()).abs() < 1e-8);
 }
+
+/// `y' = lambda y` in one state, with the dense output read at every hundredth of the first
+/// step.
+struct DenseFactor {
+    lambda: f64,
+    at: Vec<f64>,
+}
+
+impl OdeSystem<1> for DenseFactor {
+    fn rhs(&self, _t: f64, y: &State<1>) -> State<1> {
+        State::<1>::new(self.lambda * y[0])
+    }
+    fn on_step(&mut self, step: &cushion_ode::Step<'_, 1>, _ctl: &mut cushion_ode::Control) {
+        if self.at.is_empty() {
+            self.at = (1..100)
+                .map(|i| step.at(step.t0 + i as f64 / 100.0 * (step.t1 - step.t0))[0])
+                .collect();
+        }
+    }
+}
+
+/// The largest `|P(theta, z)|` of a method's dense output over one step of `y' = z y`, `h = 1`.
+fn largest_dense_factor(method: Method, z: f64) -> f64 {
+    let mut sys = DenseFactor {
+        lambda: z,
+        at: Vec::new(),
+    };
+    let o = SolverOptions {
+        method,
+        ..fixed(1.0)
+    };
+    solve(&mut sys, 0.0, State::<1>::new(1.0), 1.0, &o);
+    sys.at.iter().fold(0.0, |m, p| m.max(p.abs()))
+}
+
+#[test]
+fn the_dense_output_is_stable_up_to_its_boundary_and_not_beyond() {
+    use cushion_ode::dop853::{DENSE_STABILITY_BOUNDARY, STABILITY_BOUNDARY};
+    // DOP853's continuous extension keeps a decaying mode within its start up to h |lambda| =
+    // 5 (measured 0.953 there), and amplifies it beyond, well inside the step's own stability
+    // boundary of 6.39 (3.2 at 5.5, 10.5 at 6); DOPRI5's stays within it up to 3 (0.969).
+    let at_boundary = largest_dense_factor(Method::Dop853, -DENSE_STABILITY_BOUNDARY);
+    let beyond = largest_dense_factor(Method::Dop853, -5.5);
+    let near_step_boundary = largest_dense_factor(Method::Dop853, -0.94 * STABILITY_BOUNDARY);
+    let dp5 = largest_dense_factor(Method::Dp5, -3.0);
+    println!("DOP853: {at_boundary:.3} at 5, {beyond:.3} at 5.5, {near_step_boundary:.3} at 6; DOPRI5: {dp5:.3} at 3");
+    assert!(at_boundary <= 1.0, "{at_boundary}");
+    assert!(beyond > 3.0, "{beyond}");
+    assert!(near_step_boundary > 10.0, "{near_step_boundary}");
+    assert!(dp5 <= 1.0, "{dp5}");
+}
+
+/// A slow decay beside a fast mode held on a slow forcing: `y0' = -y0`,
+/// `y1' = -1e4 (y1 - cos t)`; counts the steps whose dense output is not stable.
+struct FastMode {
+    unstable: usize,
+    steps: usize,
+}
+
+impl OdeSystem<2> for FastMode {
+    fn rhs(&self, t: f64, y: &State<2>) -> State<2> {
+        State::<2>::new(-y[0], -1e4 * (y[1] - t.cos()))
+    }
+    fn on_step(&mut self, step: &cushion_ode::Step<'_, 2>, _ctl: &mut cushion_ode::Control) {
+        self.steps += 1;
+        self.unstable += usize::from(!step.dense_stable);
+    }
+}
+
+#[test]
+fn steps_held_by_stability_say_their_dense_output_is_not_stable() {
+    // Once the fast mode has settled on `cos t`, DOP853 steps at its stability boundary, h
+    // about 6e-4: there its dense output is not stable, and the step says so. DOPRI5's always
+    // is, and DOP853's on the oscillator, whose steps are held by accuracy.
+    let count = |method: Method| {
+        let mut sys = FastMode {
+            unstable: 0,
+            steps: 0,
+        };
+        let o = opts(method, 1e-6);
+        let sol = solve(&mut sys, 0.0, State::<2>::new(1.0, 0.0), 1.0, &o);
+        assert_eq!(sol.status, Status::Success);
+        (sys.unstable, sys.steps)
+    };
+    let (dop853_unstable, dop853_steps) = count(Method::Dop853);
+    let (dp5_unstable, dp5_steps) = count(Method::Dp5);
+    println!("DOP853: {dop853_unstable} of {dop853_steps} steps not stable; DOPRI5: {dp5_unstable} of {dp5_steps}");
+    assert!(dop853_steps > 1000, "{dop853_steps}");
+    assert!(
+        dop853_unstable * 10 > dop853_steps * 9,
+        "{dop853_unstable} of {dop853_steps}"
+    );
+    assert_eq!(dp5_unstable, 0);
+    struct Counted(usize);
+    impl OdeSystem<2> for Counted {
+        fn rhs(&self, t: f64, y: &State<2>) -> State<2> {
+            Oscillator.rhs(t, y)
+        }
+        fn on_step(&mut self, step: &cushion_ode::Step<'_, 2>, _ctl: &mut cushion_ode::Control) {
+            self.0 += usize::from(!step.dense_stable);
+        }
+    }
+    let mut osc = Counted(0);
+    solve(
+        &mut osc,
+        0.0,
+        State::<2>::new(1.0, 0.0),
+        20.0,
+        &opts(Method::Dop853, 1e-8),
+    );
+    assert_eq!(osc.0, 0);
+}

@@ -2,14 +2,23 @@
 //! stops and the per-step hook (`cushion_ode::OdeSystem`).
 
 use super::events::{EventKinematics, EV_BACK, EV_CAVITATION, EV_FWD, EV_OBJECT, EV_SENSOR};
-use super::Model;
+use super::{Model, Regime};
+use crate::physics::Segment;
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
-impl<const N: usize> OdeSystem<N> for Model {
-    #[inline]
-    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
-        let e = self.eval_inline(t, y.as_slice(), self.robot.current(), &self.regime);
-        let v_p = if self.regime.obj_stuck { 0.0 } else { e.v_p };
+impl Model {
+    /// `f(t, y)` in the robot segment `seg` and the regime `r` (the right-hand side is this in
+    /// the current ones).
+    #[inline(always)]
+    pub(crate) fn rates<const N: usize>(
+        &self,
+        t: f64,
+        y: &State<N>,
+        seg: &Segment,
+        r: &Regime,
+    ) -> State<N> {
+        let e = self.eval_inline(t, y.as_slice(), seg, r);
+        let v_p = if r.obj_stuck { 0.0 } else { e.v_p };
         // In the order of `Rate` (`Zero` and the padding to 16, so that an index needs no bounds
         // check, are zeros).
         let rates = [
@@ -32,6 +41,13 @@ impl<const N: usize> OdeSystem<N> for Model {
         ];
         let of = &self.layout.rates;
         State::<N>::from_fn(|j, _| rates[usize::from(of[j] & 15)])
+    }
+}
+
+impl<const N: usize> OdeSystem<N> for Model {
+    #[inline]
+    fn rhs(&self, t: f64, y: &State<N>) -> State<N> {
+        self.rates(t, y, self.robot.current(), &self.regime)
     }
 
     fn jacobian(&self, t: f64, y: &State<N>) -> Option<Matrix<N>> {

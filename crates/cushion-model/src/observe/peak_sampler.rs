@@ -7,8 +7,10 @@
 //! top at its end, once the next step's first sample confirms it, on both steps (the step is
 //! kept until then).
 
-use crate::model::{Eval, Model};
-use crate::peaks::{search, top_window, Bracket, KeptStep, Peak, PeakTracker, Side, K};
+use super::top_step::Unstable;
+use crate::model::{Eval, Model, Regime};
+use crate::peaks::{locate_on, search, top_window, KeptStep, Peak, PeakTracker, K};
+use crate::physics::Segment;
 use cushion_ode::Step;
 
 /// The peaks found so far (after [`PeakSampler::finish`], the run's).
@@ -62,12 +64,19 @@ pub(crate) struct PeakSampler {
     /// The next step begins where `F_r` jumps (a robot kink under a rigid or stuck tool, a stick
     /// or slip of the tool): its start is sampled too, on its own side of the jump.
     sample_start: bool,
+    /// A top in a step whose dense output is not stable is searched on the step integrated
+    /// again in halves (DOP853's: `top_step.rs`).
+    search_halves: bool,
+    /// The evaluations of `f` the halves took (the run counts them with the solver's).
+    pub halves_evals: u64,
 }
 
 impl PeakSampler {
     /// Start at the model's initial state; `rtol` sets how near the peak so far a top must come
-    /// to be searched (`peaks::top_window`).
-    pub fn new(model: &Model, rtol: f64) -> PeakSampler {
+    /// to be searched (`peaks::top_window`); with `search_halves` (the run integrates with
+    /// DOP853) a top in a step whose dense output is not stable is searched on the step
+    /// integrated again in halves (`top_step.rs`).
+    pub fn new(model: &Model, rtol: f64, search_halves: bool) -> PeakSampler {
         let e0 = model.eval(0.0, &model.y0, model.robot.current(), &model.regime);
         let s0 = model.preload_stroke;
         let window = top_window(rtol);
@@ -96,6 +105,8 @@ impl PeakSampler {
             last_sample: None,
             force_sample: 0,
             sample_start: false,
+            search_halves,
+            halves_evals: 0,
         }
     }
 
@@ -117,14 +128,22 @@ impl PeakSampler {
     pub fn finish(&mut self, model: &Model) {
         if let Some(c) = self.kept.take() {
             let at = |t: f64| c.eval(model, t);
+            let unstable_kept = (self.search_halves && !c.dense_stable).then_some(&c);
+            let mut unstable = Unstable::new(model, None, unstable_kept);
             let tracked = tracked(model);
             for (tr, q) in self.trackers.iter_mut().zip(QUANTITIES).take(tracked) {
                 if let Some(b) = tr.open_top() {
+                    if unstable_kept.is_some() {
+                        let span = (f64::INFINITY, f64::INFINITY);
+                        tr.found(unstable.locate(b, span, q, at, at));
+                        continue;
+                    }
                     let (t, value, _) = search(b, f64::INFINITY, |t| q(&at(t)).0, |_| 0.0);
                     let reported = q(&at(t)).1;
                     tr.found(Peak { t, value, reported });
                 }
             }
+            self.halves_evals += unstable.evals;
         }
         let [fr, fc, s] = &self.trackers;
         let m = &mut self.peaks;
@@ -201,32 +220,21 @@ impl PeakSampler {
         self.force_sample = self.force_sample.saturating_sub(1);
 
         // Each quantity's samples in turn; a top they confirm is searched at once, on this
-        // step's dense output and, for a top at its start, the kept step's before it.
-        let here = |t: f64| model.eval(t, step.at(t).as_slice(), &seg, &r);
-        let kept = &self.kept;
-        // (a top at the start confirmed by this step's samples was a candidate at the end of
-        // the last one, under the same test: that step is kept)
-        let behind = |t: f64| match kept {
-            Some(c) => c.eval(model, t),
-            None => here(t),
-        };
-        let locate = |b: Bracket, q: Quantity| {
-            let (t, value, side) = search(b, t0, |t| q(&behind(t)).0, |t| q(&here(t)).0);
-            let e = match side {
-                Side::Before => behind(t),
-                Side::After => here(t),
-            };
-            Peak {
-                t,
-                value,
-                reported: q(&e).1,
-            }
-        };
+        // step's dense output and, for a top at its start, the kept step's before it (a top at
+        // the start confirmed by this step's samples was a candidate at the end of the last
+        // one, under the same test: that step is kept).
         let tracked = tracked(model);
-        for (i, tr) in self.trackers.iter_mut().enumerate().take(tracked) {
-            for p in samples {
-                if let Some(b) = tr.sample(p.t, p.values[i]) {
-                    tr.found(locate(b, QUANTITIES[i]));
+        let unstable = self.search_halves
+            && (!step.dense_stable || self.kept.as_ref().is_some_and(|c| !c.dense_stable));
+        if unstable {
+            self.locate_tops_near_unstable(model, step, (&seg, &r), samples, tracked);
+        } else {
+            let (here, behind) = on_dense(model, step, (&seg, &r), &self.kept);
+            for (i, tr) in self.trackers.iter_mut().enumerate().take(tracked) {
+                for p in samples {
+                    if let Some(b) = tr.sample(p.t, p.values[i]) {
+                        tr.found(locate_on(b, t0, QUANTITIES[i], here, behind));
+                    }
                 }
             }
         }
@@ -249,12 +257,14 @@ impl PeakSampler {
                 step.dense.leading_into(&mut k.dense);
                 k.seg = seg;
                 k.regime = r;
+                k.dense_stable = step.dense_stable;
             }
             (None, true) => {
                 self.kept = Some(KeptStep {
                     dense: step.dense.leading(),
                     seg,
                     regime: r,
+                    dense_stable: step.dense_stable,
                 })
             }
             (_, false) => self.kept = None,
@@ -265,6 +275,74 @@ impl PeakSampler {
             self.sample_start = true;
         }
     }
+}
+
+impl PeakSampler {
+    /// [`PeakSampler::on_step`]'s search of the tops its samples confirm, where the dense
+    /// output of this step or of the kept one before it is not stable: a top whose bracket
+    /// reaches into such a step is searched on it integrated again in halves (`top_step.rs`),
+    /// made once, at the first top that needs it.
+    #[cold]
+    #[inline(never)]
+    fn locate_tops_near_unstable<const N: usize>(
+        &mut self,
+        model: &Model,
+        step: &Step<'_, N>,
+        (seg, r): (&Segment, &Regime),
+        samples: &[Sampled],
+        tracked: usize,
+    ) {
+        let (t0, t1) = (step.t0, step.t1);
+        let (here, behind) = on_dense(model, step, (seg, r), &self.kept);
+        let here_unstable = !step.dense_stable;
+        let kept_unstable = self.kept.as_ref().filter(|c| !c.dense_stable);
+        let this = || KeptStep {
+            dense: step.dense.leading(),
+            seg: *seg,
+            regime: *r,
+            dense_stable: false,
+        };
+        let mut unstable: Option<Unstable> = None;
+        for (i, tr) in self.trackers.iter_mut().enumerate().take(tracked) {
+            for p in samples {
+                if let Some(b) = tr.sample(p.t, p.values[i]) {
+                    let top = if here_unstable || (b.lo < t0 && kept_unstable.is_some()) {
+                        unstable
+                            .get_or_insert_with(|| {
+                                Unstable::new(model, here_unstable.then(this), kept_unstable)
+                            })
+                            .locate(b, (t0, t1), QUANTITIES[i], here, behind)
+                    } else {
+                        locate_on(b, t0, QUANTITIES[i], here, behind)
+                    };
+                    tr.found(top);
+                }
+            }
+        }
+        if let Some(u) = unstable {
+            self.halves_evals += u.evals;
+        }
+    }
+}
+
+/// The physics on the current step's dense output, and on the kept step's before it (the
+/// current one's where none is kept).
+#[inline(always)]
+fn on_dense<'a, const N: usize>(
+    model: &'a Model,
+    step: &'a Step<'_, N>,
+    (seg, r): (&'a Segment, &'a Regime),
+    kept: &'a Option<KeptStep>,
+) -> (
+    impl Fn(f64) -> Eval + Copy + 'a,
+    impl Fn(f64) -> Eval + Copy + 'a,
+) {
+    let here = move |t: f64| model.eval(t, step.at(t).as_slice(), seg, r);
+    let behind = move |t: f64| match kept {
+        Some(c) => c.eval(model, t),
+        None => here(t),
+    };
+    (here, behind)
 }
 
 /// How many of [`QUANTITIES`] a run tracks: the stroke only where there is a tool.
