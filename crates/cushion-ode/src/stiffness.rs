@@ -44,7 +44,7 @@ pub fn dense_stable(h_lambda: Option<f64>, boundary: f64) -> bool {
 /// dense output as stable. The estimate is a quotient along one direction, the difference of
 /// two states at `t + h`, and may fall well short of the fastest mode's `h |lambda|`; below
 /// 0.9 the peaks of the design space under DOP853 at rtol 1e-6 were still 2.3e-4 off
-/// (relative) in 8 of 16,384 runs, below 0.6 none by more than 3.5e-5, for 2.2 % more
+/// (relative) in 8 of 16,384 runs, below 0.6 none by more than 3.5e-5, for 1.3 % more
 /// evaluations than DOP853 took before any step was integrated again (`cushion-model`,
 /// `observe/top_step.rs`; `bench/design_accuracy.sh solver.method=dop853`).
 pub const DENSE_MARGIN: f64 = 0.6;
