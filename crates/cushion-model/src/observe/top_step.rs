@@ -13,10 +13,12 @@
 //! tops tens of microseconds away from the true ones.
 //!
 //! Half the step halves `z`: at `z = -3` the extension is within 1 % of the exact factor
-//! (`P(1/2, -3) = 0.2256`, `exp(-1.5) = 0.2231`). So under DOP853 a top is searched on the
-//! dense outputs of two DOP853 steps over the halves of its step, from the step's start, each
-//! as accurate as the accepted step (`tests/peaks.rs::dop853_tops_are_searched_on_half_steps`).
-//! They cost [`EVALS`] evaluations of `f` a step, counted with the run's.
+//! (`P(1/2, -3) = 0.2256`, `exp(-1.5) = 0.2231`). So under DOP853 a force's top in such a step
+//! is searched on the dense outputs of two DOP853 steps over the halves of the step, from its
+//! start, each as accurate as the accepted step
+//! (`tests/peaks.rs::dop853_tops_are_searched_on_half_steps`; which quantities:
+//! `peak_sampler.rs`, `FAST`). They cost [`EVALS`] evaluations of `f` a step, counted with the
+//! run's.
 
 use crate::model::{Eval, Model, Regime};
 use crate::peaks::{locate_on, Bracket, KeptStep, Peak, MAX_DYNAMIC};
