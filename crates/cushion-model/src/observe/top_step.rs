@@ -126,11 +126,12 @@ impl<'a> Unstable<'a> {
         }
     }
 
-    /// Locate the top of `value` in the bracket `b`, which reaches into an unstable step: on the halves of each unstable step, on `here_dense` and `behind_dense` (the
-    /// steps' own dense outputs) elsewhere. The samples that chose the bracket came from the
-    /// unstable dense output, which may put a top tens of microseconds from the true one: the
-    /// whole of each unstable step the bracket touches is searched, from its sample's value
-    /// taken again.
+    /// Locate the top of `value` in the bracket `b`, which reaches into an unstable step: on
+    /// the halves of each unstable step, on `here_dense` and `behind_dense` (the steps' own
+    /// dense outputs) elsewhere. The samples that chose the bracket came from the unstable
+    /// dense output, which may put a top tens of microseconds from the true one: the whole of
+    /// each unstable step the bracket touches is searched, from its sample's value taken
+    /// again (`t0, t1`: the current step's span).
     #[cold]
     #[inline(never)]
     pub fn locate(
