@@ -87,7 +87,7 @@ mod tests {
         let scene = Scene::default();
         let model = Model::new(&scene);
         let mut early_end = EarlyEnd::new(&scene);
-        let peaks = PeakSampler::new(&model, scene.solver.rtol, false).peaks;
+        let peaks = PeakSampler::new(&model, scene.solver.rtol).peaks;
         let mut y = model.y0.clone();
         let (i, j) = (model.layout.tool.unwrap(), model.layout.object.unwrap());
         let v_r = scene.robot.approach_speed;

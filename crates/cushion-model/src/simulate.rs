@@ -23,7 +23,7 @@ use crate::physics;
 use crate::summary::{RunStatus, SolverStats, Summary};
 use crate::tail;
 use crate::trajectory::{EventLogEntry, Trajectory};
-use cushion_ode::{Method, Output, SolverOptions, State, Stats, Status, Tolerance};
+use cushion_ode::{Output, SolverOptions, State, Stats, Status, Tolerance};
 
 /// What to record besides the summary.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -199,11 +199,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         .trajectory
         .then(|| Recorder::new(&model, opts.sample_interval));
     let mut system = Observed {
-        peaks: PeakSampler::new(
-            &model,
-            scene.solver.rtol,
-            scene.solver.method == Method::Dop853,
-        ),
+        peaks: PeakSampler::new(&model, scene.solver.rtol),
         early_end: scene.solver.early_end.then(|| EarlyEnd::new(scene)),
         model,
         recorder,
@@ -240,7 +236,8 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         recorder,
     } = system;
     peaks.finish(&model);
-    // the steps to the located tops (DOP853) count with the solver's evaluations
+    // the half steps of the peak search (`observe/top_step.rs`) count with the solver's
+    // evaluations
     let mut out = out;
     out.stats.rhs_evals += peaks.halves_evals;
     let peaks = peaks.peaks;

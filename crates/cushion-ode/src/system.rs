@@ -83,10 +83,9 @@ pub struct Step<'a, const N: usize> {
     pub y1: &'a State<N>,
     pub dense: &'a DenseOutput<N>,
     /// Whether the dense output is stable on this step: `false` where the method's estimate
-    /// of `h |lambda|` is above 0.6 of its dense output's stability boundary
-    /// ([`crate::stiffness::dense_stable`])
-    /// ([`crate::stepper::Stepper::dense_stability_boundary`]: DOP853's, on a step held by
-    /// stability), or where such a method had no estimate. Inside such a step a fast mode's
+    /// of `h |lambda|` is above 0.6 of its dense output's stability boundary (DOP853's, on a
+    /// step held by stability: [`crate::stepper::Stepper::dense_stability_boundary`]), or where
+    /// such a method had no estimate ([`crate::stiffness::dense_stable`]). Inside such a step a fast mode's
     /// deviation, held to the tolerance at the ends, may be amplified many times; an observer
     /// that needs the state there to the tolerance integrates the step again in shorter ones.
     pub dense_stable: bool,

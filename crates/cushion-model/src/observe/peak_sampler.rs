@@ -9,7 +9,7 @@
 
 use super::top_step::Unstable;
 use crate::model::{Eval, Model, Regime};
-use crate::peaks::{locate_on, search, top_window, KeptStep, Peak, PeakTracker, K};
+use crate::peaks::{locate_on, top_window, KeptStep, Peak, PeakTracker, K};
 use crate::physics::Segment;
 use cushion_ode::Step;
 
@@ -72,19 +72,14 @@ pub(crate) struct PeakSampler {
     /// The next step begins where `F_r` jumps (a robot kink under a rigid or stuck tool, a stick
     /// or slip of the tool): its start is sampled too, on its own side of the jump.
     sample_start: bool,
-    /// A top in a step whose dense output is not stable is searched on the step integrated
-    /// again in halves (DOP853's: `top_step.rs`).
-    search_halves: bool,
     /// The evaluations of `f` the halves took (the run counts them with the solver's).
     pub halves_evals: u64,
 }
 
 impl PeakSampler {
     /// Start at the model's initial state; `rtol` sets how near the peak so far a top must come
-    /// to be searched (`peaks::top_window`); with `search_halves` (the run integrates with
-    /// DOP853) a top in a step whose dense output is not stable is searched on the step
-    /// integrated again in halves (`top_step.rs`).
-    pub fn new(model: &Model, rtol: f64, search_halves: bool) -> PeakSampler {
+    /// to be searched (`peaks::top_window`).
+    pub fn new(model: &Model, rtol: f64) -> PeakSampler {
         let e0 = model.eval(0.0, &model.y0, model.robot.current(), &model.regime);
         let s0 = model.preload_stroke;
         let window = top_window(rtol);
@@ -113,7 +108,6 @@ impl PeakSampler {
             last_sample: None,
             force_sample: 0,
             sample_start: false,
-            search_halves,
             halves_evals: 0,
         }
     }
@@ -136,7 +130,7 @@ impl PeakSampler {
     pub fn finish(&mut self, model: &Model) {
         if let Some(c) = self.kept.take() {
             let at = |t: f64| c.eval(model, t);
-            let unstable_kept = (self.search_halves && !c.dense_stable).then_some(&c);
+            let unstable_kept = (!c.dense_stable).then_some(&c);
             let mut unstable = Unstable::new(model, None, unstable_kept);
             let tracked = tracked(model);
             for (i, (tr, q)) in self
@@ -152,9 +146,7 @@ impl PeakSampler {
                         tr.found(unstable.locate(b, span, q, at, at));
                         continue;
                     }
-                    let (t, value, _) = search(b, f64::INFINITY, |t| q(&at(t)).0, |_| 0.0);
-                    let reported = q(&at(t)).1;
-                    tr.found(Peak { t, value, reported });
+                    tr.found(locate_on(b, f64::INFINITY, q, at, at));
                 }
             }
             self.halves_evals += unstable.evals;
@@ -238,8 +230,7 @@ impl PeakSampler {
         // the start confirmed by this step's samples was a candidate at the end of the last
         // one, under the same test: that step is kept).
         let tracked = tracked(model);
-        let unstable = self.search_halves
-            && (!step.dense_stable || self.kept.as_ref().is_some_and(|c| !c.dense_stable));
+        let unstable = !step.dense_stable || self.kept.as_ref().is_some_and(|c| !c.dense_stable);
         if unstable {
             self.locate_tops_near_unstable(model, step, (&seg, &r), samples, tracked);
         } else {

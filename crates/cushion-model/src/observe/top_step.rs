@@ -18,7 +18,9 @@
 //! start, each as accurate as the accepted step
 //! (`tests/peaks.rs::dop853_tops_are_searched_on_half_steps`; which quantities:
 //! `peak_sampler.rs`, `FAST`). They cost [`EVALS`] evaluations of `f` a step, counted with the
-//! run's.
+//! run's. DOP853 is the one method whose dense output has a finite stability boundary
+//! (`cushion_ode::stepper::Stepper::dense_stability_boundary`), so a step whose dense output is
+//! not stable is a DOP853 step, and the halves are DOP853's too.
 
 use crate::model::{Eval, Model, Regime};
 use crate::peaks::{locate_on, Bracket, KeptStep, Peak, MAX_DYNAMIC};
@@ -71,7 +73,7 @@ impl Halves {
             let finite = a.y1.iter().chain(f1.iter()).all(|v| v.is_finite());
             finite.then_some((
                 KeptStep {
-                    dense: dense.leading(),
+                    dense,
                     seg: step.seg,
                     regime: step.regime,
                     dense_stable: true,
