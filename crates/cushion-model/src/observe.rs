@@ -82,6 +82,14 @@ impl<const N: usize> OdeSystem<N> for Observed {
         OdeSystem::<N>::event(&self.model, i, t, y)
     }
     #[inline]
+    fn kink_count(&self) -> usize {
+        OdeSystem::<N>::kink_count(&self.model)
+    }
+    #[inline]
+    fn kink(&self, i: usize, t: f64, y: &State<N>) -> f64 {
+        OdeSystem::<N>::kink(&self.model, i, t, y)
+    }
+    #[inline]
     fn event_direction(&self, i: usize) -> Direction {
         OdeSystem::<N>::event_direction(&self.model, i)
     }

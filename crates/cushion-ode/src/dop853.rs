@@ -123,6 +123,12 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         DENSE_STABILITY_BOUNDARY
     }
 
+    /// Its steps are long and its error expects to fall like `h^8`: a kink inside one costs
+    /// rejections (`kinks.rs`).
+    fn lands_on_kinks(&self) -> bool {
+        true
+    }
+
     #[inline]
     fn step_into<S: OdeSystem<N>>(
         &mut self,

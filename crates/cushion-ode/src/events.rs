@@ -154,7 +154,7 @@ pub struct EventScan<const N: usize> {
 
 /// How far past a step's end a crossing is forecast, in steps of its length: the controller
 /// grows a step by at most this factor (DOPRI5's largest ratio).
-const FORECAST_REACH: f64 = 10.0;
+pub(crate) const FORECAST_REACH: f64 = 10.0;
 
 impl<const N: usize> EventScan<N> {
     /// For `n_events` functions over a run of length `span` (s).

@@ -34,6 +34,7 @@ mod event_dip;
 pub mod events;
 mod failure;
 pub mod jacobian;
+pub mod kinks;
 mod lu;
 mod norm;
 pub mod options;

@@ -7,6 +7,7 @@ use crate::dense::DenseOutput;
 use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::events::EventScan;
+use crate::kinks::{KinkForecast, MAX_KINKS};
 use crate::norm::Weights;
 use crate::options::{Method, Output, SolverOptions, StiffnessAction};
 use crate::restart_steps::RestartSteps;
@@ -91,6 +92,8 @@ struct Integration<'a, S, const N: usize> {
     fresh: bool,
     /// The first step accepted after each event that restarted the run (`restart_steps.rs`).
     restart_steps: RestartSteps,
+    /// The next forecast kink, for a method that lands on them (`kinks.rs`).
+    kinks: KinkForecast,
 }
 
 impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
@@ -122,6 +125,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             next_output: 0,
             fresh: false,
             restart_steps: RestartSteps::new(),
+            kinks: KinkForecast::new(0),
         }
     }
 
@@ -209,6 +213,17 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             );
         }
         self.events.reset(&*self.sys, t0, &y0, &self.f);
+        let n_kinks = self.sys.kink_count();
+        if n_kinks > MAX_KINKS {
+            return (
+                Status::InvalidInput,
+                format!("{n_kinks} kink functions: at most {MAX_KINKS} are allowed"),
+            );
+        }
+        if stepper.lands_on_kinks() && stepper.is_adaptive() {
+            self.kinks = KinkForecast::new(n_kinks);
+            self.kinks.reset(&*self.sys, t0, &y0);
+        }
         if self.t_end == t0 {
             return (Status::Success, String::new());
         }
@@ -260,6 +275,13 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 if to_crossing < h && to_crossing > 1e3 * f64::EPSILON * self.t.abs() {
                     h = to_crossing;
                     forecast_limited = true;
+                }
+                // (a constant of the method: the other methods' loops do not test it)
+                if stepper.lands_on_kinks() {
+                    if let Some(to_kink) = self.kinks.landing(self.t, h) {
+                        h = to_kink;
+                        forecast_limited = true;
+                    }
                 }
             }
             let mut landing = false;
@@ -335,6 +357,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 },
                 &mut ctl,
             );
+            if stepper.lands_on_kinks() && !cut {
+                self.kinks
+                    .after_step(&*self.sys, &dense, (t, t_new), &y_new);
+            }
             if let Some(switch) = stepper.take_switch() {
                 if switch.to == Method::Rodas && !self.stats.stiff {
                     self.stats.stiff = true;
@@ -556,6 +582,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         self.fresh = true;
         self.f = self.rhs(t, y);
         self.events.reset(&*self.sys, t, y, &self.f);
+        self.kinks.reset(&*self.sys, t, y);
         self.f.iter().all(|v| v.is_finite())
     }
 

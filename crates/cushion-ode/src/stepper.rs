@@ -134,6 +134,13 @@ pub trait Stepper<const N: usize> {
     fn dense_stability_boundary(&self) -> f64 {
         f64::INFINITY
     }
+    /// Whether the loop ends this method's steps just past the system's forecast kinks
+    /// ([`crate::system::OdeSystem::kink_count`], `kinks.rs`): for a method of high order,
+    /// whose long steps a kink inside costs rejections. False by default (DOPRI5: no saving).
+    #[inline]
+    fn lands_on_kinks(&self) -> bool {
+        false
+    }
     /// The last attempt was accepted: the next starts from a new point.
     #[inline]
     fn accepted(&mut self) {}

@@ -145,6 +145,20 @@ pub trait OdeSystem<const N: usize> {
         g[i]
     }
 
+    /// How many kink functions there are (at most [`crate::kinks::MAX_KINKS`]): functions of
+    /// `(t, y)` whose zeros are where `f` loses smoothness without a change of regime (a jump
+    /// in one of its derivatives, such as `v |v|` where `v` changes sign). The methods that
+    /// suffer most from a step across one end their steps just past each forecast crossing
+    /// (`kinks.rs`); they are never located, logged or handled. None by default.
+    fn kink_count(&self) -> usize {
+        0
+    }
+
+    /// Kink function `i` at `(t, y)` (see [`OdeSystem::kink_count`]).
+    fn kink(&self, _i: usize, _t: f64, _y: &State<N>) -> f64 {
+        1.0
+    }
+
     /// Which sign changes of `g_i` count.
     fn event_direction(&self, _i: usize) -> Direction {
         Direction::Both

@@ -3,6 +3,7 @@
 
 use super::events::{EventKinematics, EV_BACK, EV_CAVITATION, EV_FWD, EV_OBJECT, EV_SENSOR};
 use super::{Model, Regime};
+use crate::config::Module;
 use crate::physics::Segment;
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
@@ -99,6 +100,20 @@ impl<const N: usize> OdeSystem<N> for Model {
             }
             i += 1;
         });
+    }
+
+    /// The incompressible hydraulic module's orifice drop `sd |sd|` has a jump in its second
+    /// derivative where the tool's speed relative to the flange, `sd`, changes sign: each
+    /// time the tool turns, on every half period of its ringing. Its one kink function is
+    /// `sd` (`cushion_ode::kinks`). The compressible liquid's flow law is laminar, and
+    /// smooth, through zero.
+    fn kink_count(&self) -> usize {
+        usize::from(self.p.module == Module::Hydraulic && self.layout.liquid.is_none())
+    }
+
+    fn kink(&self, _i: usize, t: f64, y: &State<N>) -> f64 {
+        let (_, v_r, _) = self.robot.current().at(t);
+        self.layout.tool.map_or(0.0, |i| v_r - y[i + 1])
     }
 
     fn event_direction(&self, i: usize) -> Direction {

@@ -6,6 +6,7 @@ pub mod bouncing_ball;
 pub mod exponential;
 pub mod fading_stiffness;
 pub mod hires;
+pub mod kinked_power;
 pub mod manufactured;
 pub mod orego;
 pub mod robertson;
