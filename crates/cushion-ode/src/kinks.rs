@@ -67,7 +67,9 @@ impl KinkForecast {
 
     /// After an accepted step from `t0` to `t1` (ending at `y1`, with dense output `dense`):
     /// the first crossing forecast past `t1`, of the functions closing on zero whose chord
-    /// reaches it within [`FORECAST_REACH`] steps.
+    /// reaches it within [`FORECAST_REACH`] steps. (On a step held by stability DOP853's dense
+    /// output at the middle may be off, and so the forecast: a step ended early costs a step,
+    /// not accuracy.)
     pub(crate) fn after_step<S: OdeSystem<N>, const N: usize>(
         &mut self,
         sys: &S,

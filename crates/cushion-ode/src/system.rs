@@ -145,11 +145,12 @@ pub trait OdeSystem<const N: usize> {
         g[i]
     }
 
-    /// How many kink functions there are (at most [`crate::kinks::MAX_KINKS`]): functions of
-    /// `(t, y)` whose zeros are where `f` loses smoothness without a change of regime (a jump
-    /// in one of its derivatives, such as `v |v|` where `v` changes sign). The methods that
-    /// suffer most from a step across one end their steps just past each forecast crossing
-    /// (`kinks.rs`); they are never located, logged or handled. None by default.
+    /// How many kink functions there are (at most [`crate::kinks::MAX_KINKS`]; more end the
+    /// run with `InvalidInput`): functions of `(t, y)` whose zeros are where `f` loses
+    /// smoothness without a change of regime (a jump in one of its derivatives, such as
+    /// `v |v|` where `v` changes sign). The methods that suffer most from a step across one
+    /// end their steps on each forecast crossing (`kinks.rs`); they are never located, logged
+    /// or handled. None by default.
     fn kink_count(&self) -> usize {
         0
     }
