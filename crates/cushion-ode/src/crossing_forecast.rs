@@ -14,6 +14,19 @@
 //! middle (on the dense output) and end, extrapolated past the end: its first zero. A function
 //! that turns back before zero (a grazing approach) has no real zero and gives no forecast.
 
+/// How far past a step's end a crossing is forecast, in steps of its length: the controller
+/// grows a step by at most this factor (DOPRI5's largest ratio).
+pub(crate) const FORECAST_REACH: f64 = 10.0;
+
+/// Whether a function with the values `a` and `b` at a step's start and end, strictly on one
+/// side of zero, closes on it with a chord that reaches zero within [`FORECAST_REACH`] steps
+/// past the end: the functions worth a forecast (the events' and the kinks').
+pub(crate) fn closes_within_reach(a: f64, b: f64) -> bool {
+    let same_side = (a > 0.0 && b > 0.0) || (a < 0.0 && b < 0.0);
+    // b / (a - b): the chord's zero past the end, in steps of its length
+    same_side && b.abs() < a.abs() && b / (a - b) <= FORECAST_REACH
+}
+
 /// The first time `tau > 0` after the step's end at which the quadratic through
 /// `(-span, g0)`, `(-span / 2, g_mid)` and `(0, g1)` is zero, if it has such a zero.
 /// `g1` must be nonzero.

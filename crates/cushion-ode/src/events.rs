@@ -152,10 +152,6 @@ pub struct EventScan<const N: usize> {
     next_crossing: f64,
 }
 
-/// How far past a step's end a crossing is forecast, in steps of its length: the controller
-/// grows a step by at most this factor (DOPRI5's largest ratio).
-pub(crate) const FORECAST_REACH: f64 = 10.0;
-
 impl<const N: usize> EventScan<N> {
     /// For `n_events` functions over a run of length `span` (s).
     pub fn new(n_events: usize, opts: &SolverOptions, span: f64) -> Self {
@@ -186,7 +182,7 @@ impl<const N: usize> EventScan<N> {
 
     /// Forecast the next crossing after a step from `t0` to `t1` that crossed nothing: of
     /// each function with one strict sign at both ends, closing on zero, that would fire
-    /// there and whose chord reaches zero within [`FORECAST_REACH`] steps, the first zero of
+    /// there and whose chord reaches zero within `FORECAST_REACH` steps, the first zero of
     /// the quadratic through its values at the ends and the middle.
     fn forecast<S: OdeSystem<N>>(
         &mut self,
@@ -200,9 +196,7 @@ impl<const N: usize> EventScan<N> {
         let mut y_mid = None;
         let mut next = f64::INFINITY;
         for (i, (&a, &b)) in self.g[..self.n].iter().zip(g1).enumerate() {
-            let closing = clearance(a, b).is_some_and(|_| b.abs() < a.abs());
-            // b / (a - b): the chord's zero past t1, in steps of its length
-            if !closing || b / (a - b) > FORECAST_REACH {
+            if !crate::crossing_forecast::closes_within_reach(a, b) {
                 continue;
             }
             if !sys.event_direction(i).crosses(b, -b) {

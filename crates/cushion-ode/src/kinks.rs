@@ -22,9 +22,8 @@
 //! scenes (rtol 1e-4 to 1e-9) its steps are short enough that landing gave errors both ways for
 //! 1 to 10 % more evaluations.
 
-use crate::crossing_forecast::zero_after;
+use crate::crossing_forecast::{closes_within_reach, zero_after};
 use crate::dense::DenseOutput;
-use crate::events::FORECAST_REACH;
 use crate::system::OdeSystem;
 use crate::State;
 
@@ -66,10 +65,10 @@ impl KinkForecast {
     }
 
     /// After an accepted step from `t0` to `t1` (ending at `y1`, with dense output `dense`):
-    /// the first crossing forecast past `t1`, of the functions closing on zero whose chord
-    /// reaches it within [`FORECAST_REACH`] steps. (On a step held by stability DOP853's dense
-    /// output at the middle may be off, and so the forecast: a step ended early costs a step,
-    /// not accuracy.)
+    /// the first crossing forecast past `t1`, of the functions that close on zero within
+    /// reach (`crossing_forecast::closes_within_reach`). On a step held by stability, DOP853's
+    /// dense output at the middle may be off, and so the forecast: a step ended early costs a
+    /// step, not accuracy.
     pub(crate) fn after_step<S: OdeSystem<N>, const N: usize>(
         &mut self,
         sys: &S,
@@ -87,8 +86,7 @@ impl KinkForecast {
         for i in 0..self.n {
             let (a, b) = (self.g[i], sys.kink(i, t1, y1));
             self.g[i] = b;
-            // one strict sign at both ends, closing, the chord's zero within reach
-            if !(a * b > 0.0 && b.abs() < a.abs() && b / (a - b) <= FORECAST_REACH) {
+            if !closes_within_reach(a, b) {
                 continue;
             }
             let y = *y_mid.get_or_insert_with(|| dense.eval(t_mid));
