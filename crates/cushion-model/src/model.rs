@@ -4,9 +4,9 @@
 //! - tool `x_t, v_t` (hydraulic and bistable only: the rigid tool is the flange),
 //! - compressible liquid `p_m, V_x` (hydraulic with `hydraulic.bulk_modulus > 0` only),
 //! - object `x_p, v_p` (when `object.enabled`),
-//! - energy ledger quadratures (when `energy.ledger`): robot work, orifice dissipation
-//!   (hydraulic), tool friction dissipation (hydraulic, bistable), contact damping dissipation
-//!   (whenever a contact exists), plane friction dissipation (`object.plane_friction > 0`),
+//! - energy ledger quadratures (when `energy.ledger`): robot work, and the energy dissipated
+//!   (whenever something dissipates: the orifice, the tool's friction, the contacts' damping,
+//!   the plane's friction, in one state, as the ledger balances their sum),
 //! - the liquid's compression energy (ledger on, compressible liquid),
 //! - `int F_c dt` (only with plane friction: the robot impulse then needs it; otherwise the
 //!   impulse follows exactly from momentum, `int F_r dt = -(m_t dv_t + m_p dv_p)`).
@@ -56,10 +56,10 @@ pub struct Layout {
     pub tool: Option<usize>,
     pub object: Option<usize>,
     pub work: Option<usize>,
-    pub d_orifice: Option<usize>,
-    pub d_friction: Option<usize>,
-    pub d_contact: Option<usize>,
-    pub d_plane: Option<usize>,
+    /// Energy dissipated by the orifice, the tool's friction, the contacts' damping and the
+    /// plane's friction (ledger). One state for their sum: the ledger balances the sum, and
+    /// each more state costs every stage of every step.
+    pub dissipated: Option<usize>,
     pub contact_impulse: Option<usize>,
     /// Compressible liquid (SPEC section 6): `p_m` and the volume moved through the orifice.
     pub liquid: Option<usize>,
@@ -82,10 +82,7 @@ pub(crate) enum Rate {
     ObjectSpeed,
     ObjectAcceleration,
     RobotPower,
-    OrificePower,
-    FrictionPower,
-    ContactDampingPower,
-    PlanePower,
+    DissipatedPower,
     LiquidPower,
     ContactForce,
     /// No state (the single placeholder of a scene with none).
@@ -116,17 +113,9 @@ impl Layout {
         }
         if scene.energy.ledger {
             l.work = take(1);
-            if scene.module == Module::Hydraulic {
-                l.d_orifice = take(1);
-            }
-            if !rigid {
-                l.d_friction = take(1);
-            }
+            // The orifice or the tool's friction (hydraulic, bistable), a contact's damping.
             if !rigid || obj {
-                l.d_contact = take(1);
-            }
-            if plane {
-                l.d_plane = take(1);
+                l.dissipated = take(1);
             }
             if liquid {
                 l.e_liquid = take(1);
@@ -149,10 +138,7 @@ impl Layout {
         set(l.object, Rate::ObjectSpeed);
         set(l.object.map(|i| i + 1), Rate::ObjectAcceleration);
         set(l.work, Rate::RobotPower);
-        set(l.d_orifice, Rate::OrificePower);
-        set(l.d_friction, Rate::FrictionPower);
-        set(l.d_contact, Rate::ContactDampingPower);
-        set(l.d_plane, Rate::PlanePower);
+        set(l.dissipated, Rate::DissipatedPower);
         set(l.e_liquid, Rate::LiquidPower);
         set(l.contact_impulse, Rate::ContactForce);
         l
@@ -168,10 +154,7 @@ impl Layout {
     pub fn quadratures(&self) -> usize {
         let q = [
             self.work,
-            self.d_orifice,
-            self.d_friction,
-            self.d_contact,
-            self.d_plane,
+            self.dissipated,
             self.e_liquid,
             self.contact_impulse,
         ]
@@ -436,6 +419,6 @@ impl Model {
     }
 }
 
-/// The largest state a scene can need (tool 2 + liquid 2 + object 2 + ledger 6 + contact
-/// impulse 1).
-pub const MAX_STATES: usize = 13;
+/// The largest state a scene can need (tool 2 + liquid 2 + object 2 + ledger 3: work,
+/// dissipation, the liquid's energy + contact impulse 1).
+pub const MAX_STATES: usize = 10;

@@ -113,9 +113,6 @@ fn solve_from(
         8 => run::<8>(system, opts, from, t_end),
         9 => run::<9>(system, opts, from, t_end),
         10 => run::<10>(system, opts, from, t_end),
-        11 => run::<11>(system, opts, from, t_end),
-        12 => run::<12>(system, opts, from, t_end),
-        13 => run::<13>(system, opts, from, t_end),
         n => return Err(n),
     })
 }

@@ -197,12 +197,10 @@ impl Model {
             row(j, &v_p);
             row(j + 1, &e.a_p);
         }
+        let dissipated = e.p_orifice + e.p_friction + e.p_contact + e.p_plane;
         let rows = [
             (l.work, &e.p_work),
-            (l.d_orifice, &e.p_orifice),
-            (l.d_friction, &e.p_friction),
-            (l.d_contact, &e.p_contact),
-            (l.d_plane, &e.p_plane),
+            (l.dissipated, &dissipated),
             (l.contact_impulse, &e.f_c),
             (l.e_liquid, &e.p_liquid),
         ];
