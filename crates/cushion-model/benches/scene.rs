@@ -82,7 +82,7 @@ fn main() {
         "ledger off (tool + object: 4 states)",
         &with(h.clone(), &[("energy.ledger", "false")]),
     );
-    row("ledger on (default: 8 states)", &h);
+    row("ledger on (default: 6 states)", &h);
     row(
         "ledger on + idle plane friction (far object)",
         &with(
