@@ -92,7 +92,8 @@ impl Tail {
     /// What the model's own force law dissipates along the tail's motion to `t_end` (J): in the
     /// orifice, the tool's friction and the stops' damping. Zero unless the tool rings. The
     /// powers are integrated by 6-point Gauss–Legendre on each half period of each piece of the
-    /// ringing (they are smooth there: no contact opens or closes), until what the ringing's
+    /// ringing (no contact opens or closes there; the orifice's `|sd|^3` has a kink where the
+    /// tool turns, which `GAUSS_LEGENDRE`'s accuracy allows for), until what the ringing's
     /// energy `m (w0 a)^2 / 2` still has to lose in the piece has fallen below `negligible`
     /// (J); that rest is added as it is lost. Closing the ledger with this (and the robot's
     /// work) leaves a residual that measures how far the closed form departs from the force law
