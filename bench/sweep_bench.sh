@@ -5,11 +5,13 @@
 #   - peak resident memory (/usr/bin/time -v) for 10^4 and 10^5 runs (the same axes, lhs, since
 #     sobol stops at 65,536 points), which should be flat: rows are streamed to disk chunk by chunk.
 # Usage: bash bench/sweep_bench.sh            (REPEAT=1 for a quick look)
+#        CUSHION_BIN=target/pgo/release/cushion bash bench/sweep_bench.sh   (the profile-guided
+#        build of scripts/build_pgo.sh)
 # Results go to bench/out/sweep/ (git-ignored); the summary is printed and kept in results.txt.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q
-BIN=target/release/cushion
+BIN=${CUSHION_BIN:-target/release/cushion}
+[ -n "${CUSHION_BIN:-}" ] || cargo build --release -q
 OUT=bench/out/sweep
 REPEAT=${REPEAT:-3}
 rm -rf "$OUT"; mkdir -p "$OUT"
