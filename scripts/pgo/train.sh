@@ -3,7 +3,7 @@
 #   - sweeps/design-space.toml (16,384 runs at the engine's defaults: what most runs of a
 #     user's sweep do),
 #   - scripts/pgo/training.toml (512 runs: every method over rtol 1e-9 to 1e-4 and end-stop
-#     stiffnesses 1e5 to 1e11, both modules),
+#     stiffnesses 1e5 to 1e11, both modules, with and without the energy ledger),
 #   - the paper scenes, one simulate each with its recorded trajectory (the recorder's path),
 #     and the compressible liquid under rodas and auto.
 # Outputs go to a scratch folder, deleted after.
