@@ -93,7 +93,7 @@ const MAX_ORIFICE_DAMPING: f64 = 0.1;
 /// taken as soon as its predicted energy error was 0.92 of the limit left a residual of 36
 /// rtol, 12 times the limit, where the tail taken a period later left 0.5 rtol. Up to 0.1
 /// the design space's largest residuals are those of before (above 1e-5: the same 14 runs,
-/// none from the tail; `docs/performance.md`, "Levers measured").
+/// none from the tail; `docs/levers.md`).
 const PREDICTED_DAMPING: f64 = 0.1;
 
 /// Error of the closed form relative to the amplitude it describes, from its initial
