@@ -517,7 +517,8 @@ def chart_map(df: pd.DataFrame, plt):
             q = d[(d.method == m) & ((d.h.isna()) if h is None else (d.h == h))].sort_values("x")
             if q.empty:
                 continue
-            color = cmap(i % 10)
+            # twelve lines: tab10, then two of its own, so that no two share a colour
+            color = cmap(i) if i < 10 else ("#555555", "#b8860b")[i - 10]
             ls = "-" if m in ADAPTIVE else (":" if m == "euler" else "--")
             ok = q.status == "ok"
             for ax, y in ((axes[0, j], q.rhs_evals.astype(float)),
