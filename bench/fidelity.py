@@ -24,8 +24,8 @@ repository root:
     sed -e 's/"solver.rtol" = 1e-7/"solver.rtol" = 1e-9/' \\
         -e "s#scene = \\"scenes/#scene = \\"$PWD/sweeps/scenes/#" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml
     target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2
-    python3 -m venv /tmp/fvenv && /tmp/fvenv/bin/pip install numpy pandas pyarrow matplotlib
-    /tmp/fvenv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9
+    bash bench/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib
+    .venv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9
 """
 
 from __future__ import annotations
@@ -320,8 +320,8 @@ def main() -> int:
         "sed -e 's/\"solver.rtol\" = 1e-7/\"solver.rtol\" = 1e-9/' \\",
         "    -e \"s#scene = \\\"scenes/#scene = \\\"$PWD/sweeps/scenes/#\" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml",
         "target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2",
-        "python3 -m venv /tmp/fvenv && /tmp/fvenv/bin/pip install numpy pandas pyarrow matplotlib",
-        "/tmp/fvenv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9",
+        "bash bench/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib",
+        ".venv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9",
         "```",
         "",
         "The speed difference is |v_compressible - v_lumped| divided by the approach speed "
