@@ -32,7 +32,7 @@ Then:
 
 Writes docs/figures/stability-map.svg, docs/figures/stability-steps.svg and the generated part of
 docs/stability.md (between its BEGIN/END markers; the prose around them is kept). Takes about
-5 minutes on two cores (about 1,350 runs, one process at a time). From the repository root:
+4 minutes on the 2-core Intel VM (1,346 runs, one process at a time). From the repository root:
 
     cargo build --release --bin cushion      # the binary the map is made with
     bash bench/setup_venv.sh --no-package    # .venv/ with numpy, pandas, matplotlib

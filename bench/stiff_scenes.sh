@@ -4,8 +4,8 @@
 # Jacobians, LU factorizations, switches. The scenes: the paper's hydraulic scene (dead time
 # 70 ms) with steel end-stops (stops.stiffness = 1e11), with a steel contact
 # (object.contact_stiffness = 1e10), and with a compressible liquid (hydraulic.bulk_modulus =
-# 1.5e9, where dp5 and dop853 stop at their step limit and are left out). atol = rtol / 1000, the scene's
-# ratio. SciPy's Radau, BDF and LSODA on the same scenes: bench/stiff_scenes_scipy.py.
+# 1.5e9, where dp5 and dop853 stop at their step limit and are left out). atol = rtol / 1000,
+# the scene's ratio. SciPy's Radau, BDF and LSODA on the same scenes: bench/stiff_scenes_scipy.py.
 #   bash bench/stiff_scenes.sh [ROUNDS] [N]       # defaults 5 and 20
 set -euo pipefail
 cd "$(dirname "$0")/.."
