@@ -667,23 +667,20 @@ def main():
     panels, steps_rows = [], []
     for k in STIFFNESSES[3:]:
         L = lin[(lin.series == "stiff") & (lin.k == k)].iloc[0]
-        tr5, d5 = trajectory(r, scene_sets("stiff", k) | method_sets("dp5", "stiff"))
-        S5 = steps_of(tr5, k, CHI, "dp5")
-        tr8, d8 = trajectory(r, scene_sets("stiff", k) | method_sets("dop853", "stiff"))
-        S8 = steps_of(tr8, k, CHI, "dop853")
-        tb = thr_of("stiff", k, "rk4", "err1pct")
-        h_rk = float(tb.h_good)
-        tr4, d4 = trajectory(r, scene_sets("stiff", k) | method_sets("rk4", "stiff", h_rk))
-        S4 = steps_of(tr4, k, CHI, "rk4")
-        for name, S, meth, dd, hh in (("dp5", S5, "dp5", d5, None), ("dop853", S8, "dop853", d8, None),
-                                      ("rk4", S4, "rk4", d4, h_rk)):
+        h_rk = float(thr_of("stiff", k, "rk4", "err1pct").h_good)
+        panel = {"title": f"k = {k:.0e} N/m^1.5 (preload: |lambda| = {abs(L.lam):.3g} /s, zeta = {L.zeta:.2g})",
+                 "runs": [], "lines": [], "bounds": []}
+        # each method drawn: its fixed step (None: adaptive at rtol 1e-6), colour, marker size
+        for meth, hh, color, ms in (("dp5", None, "C0", 3), ("dop853", None, "C2", 2), ("rk4", h_rk, "C3", 2)):
+            tr, dd = trajectory(r, scene_sets("stiff", k) | method_sets(meth, "stiff", hh))
+            S = steps_of(tr, k, CHI, meth)
             for ph in ("object contact", "on the stop", "free", "all"):
                 w = np.ones_like(S["h"], bool) if ph == "all" else (S["phase"] == ph)
                 if not w.any():
                     continue
                 ratio = S["h"][w] / S["hb"][w]
                 steps_rows.append({
-                    "k": k, "method": name, "h_fixed": hh, "phase": ph, "n": int(w.sum()),
+                    "k": k, "method": meth, "h_fixed": hh, "phase": ph, "n": int(w.sum()),
                     "h_med": float(np.median(S["h"][w])), "hb_med": float(np.median(S["hb"][w])),
                     "ratio_med": float(np.median(ratio)), "ratio_p90": float(np.percentile(ratio, 90)),
                     "share_above_bound": float(np.mean(ratio > 1.0)),
@@ -693,19 +690,16 @@ def main():
                     "err": max(rel_err(dd["object_final_velocity"], ref_of(refs, "stiff", k)["object_final_velocity"]),
                                rel_err(dd["peak_robot_force"], ref_of(refs, "stiff", k)["peak_robot_force"])),
                 })
-        panels.append({
-            "title": f"k = {k:.0e} N/m^1.5 (preload: |lambda| = {abs(L.lam):.3g} /s, zeta = {L.zeta:.2g})",
-            "runs": [("dp5 rtol 1e-6" + (", stiff flagged" if d5["stats"]["stiff"] else ""), (S5["t"], S5["h"]), "C0", 3),
-                     ("dop853 rtol 1e-6" + (", stiff flagged" if d8["stats"]["stiff"] else ""), (S8["t"], S8["h"]), "C2", 2),
-                     (f"rk4 h = {h_rk:.3g} (largest within 1 %)", (S4["t"], S4["h"]), "C3", 2)],
-            "lines": [("dp5 bound r(theta)/|lambda|, local (a contact closed)",
-                       (S5["t"], np.where(S5["phase"] == "free", np.nan, S5["hb"])), "C0"),
-                      ("dop853 bound, local", (S8["t"], np.where(S8["phase"] == "free", np.nan, S8["hb"])), "C2"),
-                      ("rk4 bound, local", (S4["t"], np.where(S4["phase"] == "free", np.nan, S4["hb"])), "C3")],
-            "bounds": [("dp5 bound at the preload", L.hb_dp5, "C0", ":"),
-                       ("dop853 bound at the preload", L.hb_dop853, "C2", ":"),
-                       ("rk4 bound at the preload", L.hb_rk4, "C3", ":")],
-        })
+            if hh is None:
+                run = f"{meth} rtol 1e-6" + (", stiff flagged" if dd["stats"]["stiff"] else "")
+            else:
+                run = f"{meth} h = {hh:.3g} (largest within 1 %)"
+            line = ("dp5 bound r(theta)/|lambda|, local (a contact closed)" if meth == "dp5"
+                    else f"{meth} bound, local")
+            panel["runs"].append((run, (S["t"], S["h"]), color, ms))
+            panel["lines"].append((line, (S["t"], np.where(S["phase"] == "free", np.nan, S["hb"])), color))
+            panel["bounds"].append((f"{meth} bound at the preload", L[f"hb_{meth}"], color, ":"))
+        panels.append(panel)
     # the compressible liquid: dp5 against the orifice's laminar rate
     Lq = liq[liq.beta == 1e8].iloc[0]
     trb, db = trajectory(r, scene_sets("bulk", 1e8) | method_sets("dp5", "bulk"))
