@@ -36,7 +36,8 @@ def trajectory(path):
         cwd=ROOT, check=True, capture_output=True)
     with open(path) as f:
         rows = list(csv.DictReader(f))
-    return ([float(r[k]) for r in rows] for k in ("t", "s")), [float(r["v_r"]) - float(r["v_t"]) for r in rows]
+    t, s = ([float(r[k]) for r in rows] for k in ("t", "s"))
+    return t, s, [float(r["v_r"]) - float(r["v_t"]) for r in rows]
 
 
 def stop_contacts(s):
@@ -56,7 +57,7 @@ def stop_contacts(s):
 
 def main():
     with tempfile.TemporaryDirectory() as d:
-        (t, s), sd = trajectory(os.path.join(d, "steel.csv"))
+        t, s, sd = trajectory(os.path.join(d, "steel.csv"))
     contacts = stop_contacts(s)
     print(f"{len(contacts)} contacts with the forward stop\n")
     print("| contact at (ms) | impact speed (m/s) | speed kept by the contact | duration (ms) | "
