@@ -15,17 +15,9 @@ Measures (both relative, compared with 1 %):
 - peak robot force: ||F_c| - |F_l|| / |F_l| (`peak_robot_force` is signed, at the largest |F_r|;
   the sign is the same in both models at every point, checked below).
 
-Needs Python >= 3.10 with numpy, pandas, pyarrow and matplotlib. Reproduce everything from the
-repository root:
-
-    cargo build --release
-    target/release/cushion sweep sweeps/fidelity.toml --out /tmp/fidelity-run --threads 2
-    # the solver's own error: the same sweep at rtol 1e-9 (optional, for the page's check)
-    sed -e 's/"solver.rtol" = 1e-7/"solver.rtol" = 1e-9/' \\
-        -e "s#scene = \\"scenes/#scene = \\"$PWD/sweeps/scenes/#" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml
-    target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2
-    bash bench/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib
-    .venv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9
+Needs Python >= 3.10 with numpy, pandas, pyarrow and matplotlib. The commands that reproduce
+everything from the repository root are `REPRODUCE` below, which the page it writes shows too;
+the sweep at rtol 1e-9 is optional, for the page's check of the solver's own error.
 """
 
 from __future__ import annotations
@@ -37,6 +29,16 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+# Shown on the page as they are written here; run them from the repository root.
+REPRODUCE = r"""cargo build --release
+target/release/cushion sweep sweeps/fidelity.toml --out /tmp/fidelity-run --threads 2
+# the solver's own error: the same sweep at rtol 1e-9
+sed -e 's/"solver.rtol" = 1e-7/"solver.rtol" = 1e-9/' \
+    -e "s#scene = \"scenes/#scene = \"$PWD/sweeps/scenes/#" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml
+target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2
+bash bench/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib
+.venv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9"""
 
 ROOT = Path(__file__).resolve().parent.parent
 BETA = "hydraulic.bulk_modulus"
@@ -300,7 +302,7 @@ def main() -> int:
     md += [
         "The hydraulic module has two models: the lumped one (incompressible liquid, "
         "`hydraulic.bulk_modulus = 0`, the default) and a compressible one "
-        "(`hydraulic.bulk_modulus` = beta > 0, stiff, solved with `solver.method = \"rodas\"`; "
+        "(`hydraulic.bulk_modulus` = beta > 0, stiff, solved with `solver.method = \"rodas\"` or `\"auto\"`; "
         "[model.md](model.md#compressible-liquid-a-richer-variant-for-checking-the-lumped-one)). "
         "The question: where does the lumped model's `object_final_velocity` or "
         "`peak_robot_force` differ from the compressible model's by more than 1 %?",
@@ -314,14 +316,7 @@ def main() -> int:
         "compressible run is compared with the lumped run at the same point. To reproduce it:",
         "",
         "```sh",
-        "cargo build --release",
-        "target/release/cushion sweep sweeps/fidelity.toml --out /tmp/fidelity-run --threads 2",
-        "# the solver's own error: the same sweep at rtol 1e-9",
-        "sed -e 's/\"solver.rtol\" = 1e-7/\"solver.rtol\" = 1e-9/' \\",
-        "    -e \"s#scene = \\\"scenes/#scene = \\\"$PWD/sweeps/scenes/#\" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml",
-        "target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2",
-        "bash bench/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib",
-        ".venv/bin/python bench/fidelity.py /tmp/fidelity-run --reference /tmp/fidelity-rtol9",
+        *REPRODUCE.splitlines(),
         "```",
         "",
         "The speed difference is |v_compressible - v_lumped| divided by the approach speed "
