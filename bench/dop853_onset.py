@@ -19,7 +19,8 @@ contact onset").
 import re
 from pathlib import Path
 
-COEFFICIENTS = Path(__file__).resolve().parent.parent / "crates/cushion-ode/src/dop853/coefficients.rs"
+ROOT = Path(__file__).resolve().parent.parent
+COEFFICIENTS = ROOT / "crates/cushion-ode/src/dop853/coefficients.rs"
 
 
 def read_coefficients():
