@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""How well DOP853's error estimates see a force that sets in inside a step.
+"""How well DOP853's error estimates see a force that sets in or vanishes inside a step.
 
-One step of length 1 on the quadrature `y' = (t - s)^p` (zero before `s`): a Hertzian contact
-force `delta^1.5` with `delta` growing linearly from the onset `s` (p = 1.5), and its integral
-(p = 2.5). For onsets `s` from the step's start to near its end, prints the true error of
-DOP853's eighth-order solution, its fifth-order estimate `err5` (the eighth- minus the
-fifth-order solution), its third-order estimate `err3`, the combined estimate the step size is
-judged by, `err5^2 / sqrt(err5^2 + 0.01 err3^2)` (Hairer's DOP853), and the two ratios
-estimate / truth. A ratio below 1 means the step passes with more error than it reports.
+One step of length 1 on the quadrature `y' = (t - s)^p` after `s` (zero before: a force that
+sets in at `s`) or `(s - t)^p` before `s` (zero after: a force that vanishes there): a
+Hertzian contact force `delta^1.5` with `delta` linear in time (p = 1.5), and its integral
+(p = 2.5). For `s` across the step, prints the true error of DOP853's eighth-order solution,
+its fifth-order estimate `err5` (the eighth- minus the fifth-order solution), its third-order
+estimate `err3`, the combined estimate the step size is judged by,
+`err5^2 / sqrt(err5^2 + 0.01 err3^2)` (Hairer's DOP853), and the two ratios estimate / truth.
+A ratio below 1 means the step passes with more error than it reports.
 
     python3 bench/dop853_onset.py        # standard library only
 
@@ -40,19 +41,31 @@ def weights(k):
     return nodes, b, err5, err3
 
 
+def row(kind, p, s, nodes, b, w5, w3):
+    """One step of `y' = (t - s)^p` after `s` ("sets in") or `(s - t)^p` before it ("vanishes")."""
+    if kind == "sets in":
+        f = [max(c - s, 0.0) ** p for c in nodes]
+        exact = (1.0 - s) ** (p + 1) / (p + 1)
+    else:
+        f = [max(s - c, 0.0) ** p for c in nodes]
+        exact = s ** (p + 1) / (p + 1)
+    if exact == 0.0:  # nothing in the step
+        return
+    true = sum(bi * fi for bi, fi in zip(b, f)) - exact
+    e5 = sum(wi * fi for wi, fi in zip(w5, f))
+    e3 = sum(wi * fi for wi, fi in zip(w3, f))
+    combined = e5 * e5 / (e5 * e5 + 0.01 * e3 * e3) ** 0.5
+    print(f"{kind:8s}  {p:3.1f}  {s:4.2f}  {abs(true):11.2e} {abs(e5):9.2e} {abs(e3):9.2e} "
+          f"{combined:9.2e}  {abs(e5 / true):9.2f}  {combined / abs(true):10.2f}")
+
+
 def main():
     nodes, b, w5, w3 = weights(read_coefficients())
-    print("   p  onset   true error      err5      err3  combined  err5/true  combined/true")
-    for p in (1.5, 2.5):
-        for s in (0.0, 0.1, 0.3, 0.5, 0.7, 0.9):
-            f = [max(c - s, 0.0) ** p for c in nodes]
-            exact = (1.0 - s) ** (p + 1) / (p + 1)
-            true = sum(bi * fi for bi, fi in zip(b, f)) - exact
-            e5 = sum(wi * fi for wi, fi in zip(w5, f))
-            e3 = sum(wi * fi for wi, fi in zip(w3, f))
-            combined = e5 * e5 / (e5 * e5 + 0.01 * e3 * e3) ** 0.5
-            print(f"{p:4.1f}  {s:5.1f}  {abs(true):11.2e} {abs(e5):9.2e} {abs(e3):9.2e} "
-                  f"{combined:9.2e}  {abs(e5 / true):9.2f}  {combined / abs(true):13.2f}")
+    print("force       p     s   true error      err5      err3  combined  err5/true  comb./true")
+    for kind in ("sets in", "vanishes"):
+        for p in (1.5, 2.5):
+            for s in (0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99):
+                row(kind, p, s, nodes, b, w5, w3)
 
 
 if __name__ == "__main__":
