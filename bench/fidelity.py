@@ -302,7 +302,8 @@ def main() -> int:
     md += [
         "The hydraulic module has two models: the lumped one (incompressible liquid, "
         "`hydraulic.bulk_modulus = 0`, the default) and a compressible one "
-        "(`hydraulic.bulk_modulus` = beta > 0, stiff, solved with `solver.method = \"rodas\"` or `\"auto\"`; "
+        "(`hydraulic.bulk_modulus` = beta > 0, stiff, solved with `solver.method = \"rodas\"` "
+        "or `\"auto\"`; "
         "[model.md](model.md#compressible-liquid-a-richer-variant-for-checking-the-lumped-one)). "
         "The question: where does the lumped model's `object_final_velocity` or "
         "`peak_robot_force` differ from the compressible model's by more than 1 %?",
