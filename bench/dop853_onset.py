@@ -38,6 +38,9 @@ def weights(k):
     b3 = [0.0] * 12
     b3[0], b3[8], b3[11] = k["BHH1"], k["BHH2"], k["BHH3"]
     err3 = [bi - b3i for bi, b3i in zip(b, b3)]
+    # a weight the pattern above failed to read would be taken as zero: the sums tell
+    if abs(sum(b) - 1.0) > 1e-12 or abs(sum(err5)) > 1e-12 or abs(sum(err3)) > 1e-12:
+        raise SystemExit(f"{COEFFICIENTS}: weights not read in full")
     return nodes, b, err5, err3
 
 
