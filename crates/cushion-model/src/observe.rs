@@ -94,6 +94,10 @@ impl<const N: usize> OdeSystem<N> for Observed {
         OdeSystem::<N>::event_direction(&self.model, i)
     }
     #[inline]
+    fn kinked_at_event(&self, i: usize) -> bool {
+        OdeSystem::<N>::kinked_at_event(&self.model, i)
+    }
+    #[inline]
     fn event_chord_bound(&self, i: usize, t0: f64, t1: f64, dev: &State<N>) -> Option<f64> {
         OdeSystem::<N>::event_chord_bound(&self.model, i, t0, t1, dev)
     }

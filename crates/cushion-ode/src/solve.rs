@@ -90,6 +90,10 @@ struct Integration<'a, S, const N: usize> {
     /// No step accepted since the last restart (an event or a time stop that changed the
     /// regime). Not at the run's start: a smooth problem starts smooth.
     fresh: bool,
+    /// No step accepted since a restart at an event whose function is, in the new regime, a
+    /// kink of `f` ([`OdeSystem::kinked_at_event`]): the first step starts where a force sets
+    /// in like `delta^1.5` (a contact's onset). Only for a method that lands on kinks.
+    on_kink: bool,
     /// The first step accepted after each event that restarted the run (`restart_steps.rs`).
     restart_steps: RestartSteps,
     /// The next forecast kink, for a method that lands on them (`kinks.rs`).
@@ -124,6 +128,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             ys: Vec::new(),
             next_output: 0,
             fresh: false,
+            on_kink: false,
             restart_steps: RestartSteps::new(),
             kinks: KinkForecast::new(0),
         }
@@ -242,6 +247,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         };
         let mut ctl = Control::new();
         let mut limited_streak = 0;
+        // the attempt is a step taken again to end just past a kinked crossing (`events.rs`),
+        // which it keeps whatever it finds
+        let mut taken_again = false;
         // Every attempt is written here in place (`Stepper::step_into`).
         let mut attempt = Attempt::<N>::empty();
 
@@ -295,6 +303,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
 
             let (t, y, f0) = (self.t, self.y, self.f);
+            let (fresh, on_kink) = (self.fresh, self.on_kink);
             let mut h_new = match self.attempt(stepper, &mut controller, adaptive, h, &mut attempt)
             {
                 Tried::Accepted(h_new) => h_new,
@@ -335,7 +344,19 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 &attempt.y1,
                 &mut ctl,
                 &mut self.stats,
+                stepper.lands_on_kinks() && !taken_again,
             );
+            if let Some(t_kink) = self.events.take_redo() {
+                // a kink of `f` well inside the step: its estimate did not see it. The step
+                // counts as rejected and is taken again to end just past the crossing.
+                self.stats.steps -= 1;
+                self.stats.rejected += 1;
+                (self.fresh, self.on_kink) = (fresh, on_kink);
+                h = (t_kink - t) * (1.0 + LAND_PAST);
+                taken_again = true;
+                continue;
+            }
+            taken_again = false;
             let cut = action != EventAction::Continue;
             let (t_new, y_new) = if cut {
                 (t_cut, y_cut)
@@ -389,6 +410,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     );
                 }
                 let event = self.events.log.last().map(|e| (e.index, e.rising));
+                self.on_kink = stepper.lands_on_kinks()
+                    && (self.events.log.iter().rev())
+                        .take_while(|e| e.t == t_new)
+                        .any(|e| self.sys.kinked_at_event(e.index));
                 let learned = self.restart_steps.restart(event);
                 if adaptive {
                     controller.reset();
@@ -459,7 +484,19 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         if let Some(err) = &attempt.err {
             let en = match &attempt.err_low {
                 None => self.weights.error_norm(err, &y, &attempt.y1),
-                Some(err3) => self.weights.dop853_error_norm(err, err3, &y, &attempt.y1),
+                Some(err3) => {
+                    let combined = self.weights.dop853_error_norm(err, err3, &y, &attempt.y1);
+                    // DOP853's combined estimate, `err5^2 / sqrt(err5^2 + 0.01 err3^2)`, is
+                    // built for smooth solutions: for a force that sets in like `delta^1.5`
+                    // where the step starts it gives 0.29 of the true error, its fifth-order
+                    // estimate alone 1.46 (`bench/dop853_onset.py`). Such a step is judged
+                    // by the larger (`tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`).
+                    if self.on_kink {
+                        combined.max(self.weights.error_norm(err, &y, &attempt.y1))
+                    } else {
+                        combined
+                    }
+                }
             };
             let (accepted, mut hn) = controller.next(en, h);
             if !accepted && self.fresh {
@@ -476,6 +513,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         }
         self.stats.steps += 1;
         self.fresh = false;
+        self.on_kink = false;
         self.restart_steps.accepted(h, err_norm, stepper.order());
         // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
         let counted = Counted::new(&*self.sys);
@@ -580,6 +618,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     /// anew there. Returns false if `f` is not finite.
     fn restart_at(&mut self, t: f64, y: &State<N>) -> bool {
         self.fresh = true;
+        self.on_kink = false;
         self.f = self.rhs(t, y);
         self.events.reset(&*self.sys, t, y, &self.f);
         self.kinks.reset(&*self.sys, t, y);

@@ -165,6 +165,22 @@ pub trait OdeSystem<const N: usize> {
         Direction::Both
     }
 
+    /// Whether `f`, in the current regime, loses smoothness where `g_i` is zero: a contact
+    /// force `k delta^1.5` with `delta` the penetration `g_i`, which vanishes as the contact
+    /// ends. For a method whose error estimate misses what such a point costs a step
+    /// ([`crate::stepper::Stepper::lands_on_kinks`]), the loop asks twice:
+    /// - before the handlers, of a crossing found well inside a step: the step is not kept but
+    ///   taken again to end just past the crossing (`events.rs`, "Kinked crossings");
+    /// - after the handlers restarted the run at event `i`, in the new regime (a contact has
+    ///   just begun, its force sets in like `delta^1.5` where the first step starts): that
+    ///   step is judged by the more cautious of the method's estimates (`solve.rs`).
+    ///
+    /// False by default: a regime that only the handlers switch usually leaves `f` smooth
+    /// across the crossing (a contact's onset before its handler, a threshold only recorded).
+    fn kinked_at_event(&self, _i: usize) -> bool {
+        false
+    }
+
     /// Optional, for a cheaper event scan: a bound of how far `g_i(t, y(t))` can stray, for `t`
     /// in `[t0, t1]`, from the straight line between its values at `t0` and `t1`, when each
     /// component `y_j(t)` of the step's dense output strays at most `deviation[j]` from its own

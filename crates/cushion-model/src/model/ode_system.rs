@@ -137,6 +137,22 @@ impl<const N: usize> OdeSystem<N> for Model {
         }
     }
 
+    /// A contact's penetration while the contact is on (and its force not released): the
+    /// Hertz term `k d^1.5`, with its Hunt–Crossley damping, has an infinite second derivative
+    /// where `d` is zero. That is the contact's end before its handler, and, after an onset's
+    /// handler, the point the run restarts from. Every other crossing leaves the current
+    /// regime's `f` smooth: an onset switches the force on only in its handler, and the
+    /// release, cavitation, stick and sensor laws change only with the regime.
+    fn kinked_at_event(&self, i: usize) -> bool {
+        let r = &self.regime;
+        match self.events.get(i).copied() {
+            Some(EV_OBJECT) => r.obj_contact && !r.obj_released,
+            Some(EV_FWD) => r.fwd && !r.stop_released,
+            Some(EV_BACK) => r.back && !r.stop_released,
+            _ => false,
+        }
+    }
+
     fn on_event(&mut self, i: usize, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
         let kind = self.events[i];
         self.handle_event(kind, t, y.as_mut_slice(), ctl)

@@ -5,6 +5,7 @@ pub mod arenstorf;
 pub mod bouncing_ball;
 pub mod exponential;
 pub mod fading_stiffness;
+pub mod hertz_rebound;
 pub mod hires;
 pub mod kinked_power;
 pub mod manufactured;
