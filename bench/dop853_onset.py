@@ -10,14 +10,17 @@ estimate `err3`, the combined estimate the step size is judged by,
 `err5^2 / sqrt(err5^2 + 0.01 err3^2)` (Hairer's DOP853), and the two ratios estimate / truth.
 A ratio below 1 means the step passes with more error than it reports.
 
-    python3 bench/dop853_onset.py        # standard library only
+    python3 bench/dop853_onset.py [S ...]    # standard library only; S: the points s
+                                             # (default 0 0.1 0.3 0.5 0.7 0.9 0.99)
 
 The coefficients are read from `crates/cushion-ode/src/dop853/coefficients.rs`, the ones the
-engine runs. The figures are quoted in docs/accuracy.md, section 7 ("DOP853 after a gentle
-contact onset").
+engine runs. The figures are quoted in docs/accuracy.md, section 7 ("DOP853 at contact onsets
+and lift-offs"), and in `events.rs` (`REDO_BEFORE`, `REDO_AFTER`: `0.01 0.9 0.93 0.95 0.97
+0.99`).
 """
 
 import re
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -64,10 +67,11 @@ def row(kind, p, s, nodes, b, w5, w3):
 
 def main():
     nodes, b, w5, w3 = weights(read_coefficients())
+    points = [float(a) for a in sys.argv[1:]] or [0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99]
     print("force       p     s   true error      err5      err3  combined  err5/true  comb./true")
     for kind in ("sets in", "vanishes"):
         for p in (1.5, 2.5):
-            for s in (0.0, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99):
+            for s in points:
                 row(kind, p, s, nodes, b, w5, w3)
 
 

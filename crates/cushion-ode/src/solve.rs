@@ -490,7 +490,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                     // built for smooth solutions: for a force that sets in like `delta^1.5`
                     // where the step starts it gives 0.29 of the true error, its fifth-order
                     // estimate alone 1.46 (`bench/dop853_onset.py`). Such a step is judged
-                    // by the larger (`tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`).
+                    // by the larger (cushion-model's
+                    // `tests/peaks.rs::dop853_after_a_gentle_contact_onset`).
                     if self.on_kink {
                         combined.max(self.weights.error_norm(err, &y, &attempt.y1))
                     } else {
