@@ -165,11 +165,6 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
         true
     }
 
-    /// As DOPRI5 while it is the method, so that `auto` is DOPRI5 to the bit until it switches.
-    fn takes_kinked_steps_again(&self) -> bool {
-        !self.stiff
-    }
-
     fn controller(&self, opts: &SolverOptions) -> AutoController {
         if self.stiff {
             AutoController::Implicit(self.implicit.controller(opts))

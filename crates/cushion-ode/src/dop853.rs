@@ -129,11 +129,6 @@ impl<const N: usize> Stepper<N> for Dop853<N> {
         true
     }
 
-    /// A lone Hertz rebound: worst 144 to 3.3 rtol (`examples/hertz_rebounds.rs`).
-    fn takes_kinked_steps_again(&self) -> bool {
-        true
-    }
-
     #[inline]
     fn step_into<S: OdeSystem<N>>(
         &mut self,

@@ -122,11 +122,6 @@ impl<const N: usize> Default for Dopri5<N> {
 impl<const N: usize> Stepper<N> for Dopri5<N> {
     type Controller = PiController;
 
-    /// A lone Hertz rebound: worst 52 to 15.7 rtol (`examples/hertz_rebounds.rs`).
-    fn takes_kinked_steps_again(&self) -> bool {
-        true
-    }
-
     fn order(&self) -> u32 {
         5
     }

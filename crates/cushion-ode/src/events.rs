@@ -26,13 +26,11 @@
 //! error of a step across a kink, which an embedded estimate built for smooth solutions does not
 //! see. DOP853's two estimates give 0.22 and 0.04 of the true error for a `delta^1.5` that
 //! vanishes in the middle of a step, but 2.3 and 1.07 for one that vanishes at 0.99 of it
-//! (`bench/dop853_onset.py`). So, for the explicit Runge–Kutta pairs
-//! ([`crate::stepper::Stepper::takes_kinked_steps_again`]), a step whose first crossing is such
-//! a kink, found between [`REDO_AFTER`] and [`REDO_BEFORE`] of its length, is not handled: the
-//! scan reports the crossing and the loop takes the step again, once, ending just past it
-//! (`solve.rs`). The crossing is then found at the end of the new step and handled there. On a
-//! lone Hertz rebound DOP853's worst error went from 144 to 3.3 rtol, DOPRI5's from 52 to 15.7
-//! (`examples/hertz_rebounds.rs`). Guarded by
+//! (`bench/dop853_onset.py`). So, for a method that asks ([`crate::stepper::Stepper::lands_on_kinks`]),
+//! a step whose first crossing is such a kink, found between [`REDO_AFTER`] and
+//! [`REDO_BEFORE`] of its length, is not handled: the scan reports the crossing and the loop
+//! takes the step again, once, ending just past it (`solve.rs`). The crossing is then found
+//! at the end of the new step and handled there. Guarded by
 //! `tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
 
 use crate::dense::DenseOutput;

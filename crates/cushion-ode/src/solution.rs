@@ -33,8 +33,8 @@ impl Status {
 pub struct Stats {
     /// Accepted steps.
     pub steps: u64,
-    /// Rejected steps (error too large, a non-finite stage, or a failed solve; under DOPRI5
-    /// and DOP853 also a step taken again to end just past a kinked crossing: `events.rs`).
+    /// Rejected steps (error too large, a non-finite stage, or a failed solve; under DOP853
+    /// also a step taken again to end just past a kinked crossing: `events.rs`).
     pub rejected: u64,
     /// Right-hand-side evaluations, counted as they are made: those of the steps, of the
     /// initial step selection, of restarts, and of finite-difference Jacobians.

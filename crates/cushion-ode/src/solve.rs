@@ -344,7 +344,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 &attempt.y1,
                 &mut ctl,
                 &mut self.stats,
-                stepper.takes_kinked_steps_again() && !taken_again,
+                stepper.lands_on_kinks() && !taken_again,
             );
             if let Some(t_kink) = self.events.take_redo() {
                 // a kink of `f` well inside the step: its estimate did not see it. The step

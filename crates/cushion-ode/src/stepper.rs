@@ -142,15 +142,6 @@ pub trait Stepper<const N: usize> {
     fn lands_on_kinks(&self) -> bool {
         false
     }
-    /// Whether the loop takes a step again, to end just past the crossing, when it finds a
-    /// crossing at which `f` is kinked well inside it ([`crate::system::OdeSystem::kinked_at_event`],
-    /// `events.rs`, "Kinked crossings"): for the explicit Runge–Kutta pairs, whose estimates
-    /// do not see the kink and whose dense output there is built across it. False by default
-    /// (Rodas, the fixed-step methods).
-    #[inline]
-    fn takes_kinked_steps_again(&self) -> bool {
-        false
-    }
     /// The last attempt was accepted: the next starts from a new point.
     #[inline]
     fn accepted(&mut self) {}
@@ -245,12 +236,6 @@ impl<const N: usize> Stepper<N> for ExplicitRk<N> {
 
     fn is_adaptive(&self) -> bool {
         !self.tab.e.is_empty()
-    }
-
-    /// An embedded pair does, as DOPRI5 (the same numbers as `dopri5.rs` for its tableau); a
-    /// fixed step cannot.
-    fn takes_kinked_steps_again(&self) -> bool {
-        self.is_adaptive()
     }
 
     fn controller(&self, opts: &SolverOptions) -> PiController {

@@ -167,15 +167,13 @@ pub trait OdeSystem<const N: usize> {
 
     /// Whether `f`, in the current regime, loses smoothness where `g_i` is zero: a contact
     /// force `k delta^1.5` with `delta` the penetration `g_i`, which vanishes as the contact
-    /// ends. The loop asks twice:
-    /// - before the handlers, of a crossing found well inside a step: under an explicit
-    ///   Runge–Kutta pair ([`crate::stepper::Stepper::takes_kinked_steps_again`]) the step is
-    ///   not kept but taken again to end just past the crossing (`events.rs`, "Kinked
-    ///   crossings");
+    /// ends. For a method whose error estimate misses what such a point costs a step
+    /// ([`crate::stepper::Stepper::lands_on_kinks`]), the loop asks twice:
+    /// - before the handlers, of a crossing found well inside a step: the step is not kept but
+    ///   taken again to end just past the crossing (`events.rs`, "Kinked crossings");
     /// - after the handlers restarted the run at event `i`, in the new regime (a contact has
-    ///   just begun, its force sets in like `delta^1.5` where the first step starts): under
-    ///   DOP853 ([`crate::stepper::Stepper::lands_on_kinks`]), whose combined estimate misses
-    ///   most of that, the step is judged by the larger of its two estimates (`solve.rs`).
+    ///   just begun, its force sets in like `delta^1.5` where the first step starts): that
+    ///   step is judged by the more cautious of the method's estimates (`solve.rs`).
     ///
     /// False by default: a regime that only the handlers switch usually leaves `f` smooth
     /// across the crossing (a contact's onset before its handler, a threshold only recorded).

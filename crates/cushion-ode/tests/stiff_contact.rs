@@ -159,48 +159,42 @@ fn a_recurring_contact_reuses_its_first_step() {
     }
 }
 
-/// A lone elastic rebound (`test_models::hertz_rebound`) in the cases where the lift-off was
-/// read from a step across it. DOP853's error estimates, built for smooth solutions, give 0.04
+/// A lone elastic rebound (`test_models::hertz_rebound`) in the cases where DOP853 read the
+/// lift-off from a step across it: its error estimates, built for smooth solutions, give 0.04
 /// (combined) and 0.22 (fifth order) of the true error for a `delta^1.5` that vanishes
-/// mid-step (`bench/dop853_onset.py`), and the dense output there is built across the kink:
-/// the rebound speed came out 24 to 144 times the tolerance off under DOP853, 34 to 52 under
-/// DOPRI5. With the contact's end declared a kink of `f` (`OdeSystem::kinked_at_event`), such
-/// a step is taken again to end just past the lift-off (`events.rs`, "Kinked crossings"), and
-/// under DOP853 the first step after the onset is judged by the larger of its estimates:
-/// measured 0.3 to 1.0 times the tolerance under DOP853, 0.4 to 6.8 under DOPRI5.
+/// mid-step (`bench/dop853_onset.py`), and the rebound speed came out 24 to 144 times the
+/// tolerance off.
+/// With the contact's end declared a kink of `f` (`OdeSystem::kinked_at_event`), such a step
+/// is taken again to end just past the lift-off (`events.rs`, "Kinked crossings"), and the
+/// first step after the onset is judged by the larger of DOP853's estimates: measured 0.3 to
+/// 1.0 times the tolerance. DOPRI5 does neither, and is the same either way.
 #[test]
 fn a_lift_off_inside_a_step_is_taken_again() {
     use cushion_ode::test_models::hertz_rebound::rebound;
-    // (method, K/m, v0, rtol, the largest error declared, in rtol)
+    // (K/m, v0, rtol)
     let cases = [
-        (Method::Dop853, 1e6, 0.03, 1e-9, 5.0),
-        (Method::Dop853, 1e6, 0.01, 1e-8, 5.0),
-        (Method::Dop853, 1e8, 0.01, 1e-9, 5.0),
-        (Method::Dop853, 1e9, 0.3, 1e-9, 5.0),
-        (Method::Dp5, 1e7, 0.03, 1e-8, 10.0),
-        (Method::Dp5, 1e7, 1.0, 1e-8, 10.0),
-        (Method::Dp5, 1e7, 0.01, 1e-6, 10.0),
-        (Method::Dp5, 1e6, 0.03, 1e-6, 10.0),
+        (1e6, 0.03, 1e-9),
+        (1e6, 0.01, 1e-8),
+        (1e8, 0.01, 1e-9),
+        (1e9, 0.3, 1e-9),
     ];
-    let mut worst_undeclared = [0.0f64; 2];
-    for (method, k, v0, rtol, allowed) in cases {
-        let (declared, _) = rebound(method, true, k, v0, rtol).expect("a lift-off");
-        let (undeclared, _) = rebound(method, false, k, v0, rtol).expect("a lift-off");
+    let mut worst_undeclared: f64 = 0.0;
+    for (k, v0, rtol) in cases {
+        let (declared, _) = rebound(Method::Dop853, true, k, v0, rtol).expect("a lift-off");
+        let (undeclared, _) = rebound(Method::Dop853, false, k, v0, rtol).expect("a lift-off");
         println!(
-            "{method:?}, K/m {k:.0e}, v0 {v0}, rtol {rtol:.0e}: {:.1} rtol, undeclared {:.1}",
+            "K/m {k:.0e}, v0 {v0}, rtol {rtol:.0e}: {:.1} rtol, undeclared {:.1}",
             declared / rtol,
             undeclared / rtol
         );
         assert!(
-            declared < allowed * rtol,
-            "{method:?}, K/m {k:e}, v0 {v0}, rtol {rtol:e}: rebound {declared:.2e} off"
+            declared < 5.0 * rtol,
+            "K/m {k:e}, v0 {v0}, rtol {rtol:e}: rebound {declared:.2e} off"
         );
-        let w = &mut worst_undeclared[usize::from(method == Method::Dp5)];
-        *w = w.max(undeclared / rtol);
+        worst_undeclared = worst_undeclared.max(undeclared / rtol);
+        let dp5 = rebound(Method::Dp5, true, k, v0, rtol);
+        assert_eq!(dp5, rebound(Method::Dp5, false, k, v0, rtol));
     }
     // what the test guards: without the declaration the same cases are far off
-    assert!(
-        worst_undeclared.iter().all(|&w| w > 40.0),
-        "{worst_undeclared:?} rtol"
-    );
+    assert!(worst_undeclared > 50.0, "{worst_undeclared:.1} rtol");
 }
