@@ -1,55 +1,13 @@
 //! A ball dropped on a stiff Hertzian floor: the steps that run from free flight into the
 //! contact and the first steps after it begins, against closed forms.
 
-use cushion_ode::{
-    solve, Control, Direction, EventAction, Method, OdeSystem, SolverOptions, State, Status,
-    Tolerance,
-};
+use cushion_ode::test_models::hertz_rebound::HertzRebound;
+use cushion_ode::{solve, Method, SolverOptions, State, Status, Tolerance};
 
 const G: f64 = 9.81;
 /// Floor stiffness over the ball's mass, `K / m` (N/m^1.5/kg): a steel-like contact.
 const K_OVER_M: f64 = 1e11;
 const HEIGHT: f64 = 1.0;
-
-/// `y'' = -g`, and `+ (K/m) (-y)^1.5` while in contact (`y < 0`). Event 0: `y`, falling to
-/// begin the contact, rising to end it; each restarts the integration.
-struct Ball {
-    in_contact: bool,
-}
-
-impl OdeSystem<2> for Ball {
-    fn rhs(&self, _t: f64, y: &State<2>) -> State<2> {
-        let push = if self.in_contact {
-            K_OVER_M * (-y[0]).max(0.0).powf(1.5)
-        } else {
-            0.0
-        };
-        State::<2>::new(y[1], push - G)
-    }
-    fn event_count(&self) -> usize {
-        1
-    }
-    fn events(&self, _t: f64, y: &State<2>, g: &mut [f64]) {
-        g[0] = y[0];
-    }
-    fn event_direction(&self, _i: usize) -> Direction {
-        if self.in_contact {
-            Direction::Rising
-        } else {
-            Direction::Falling
-        }
-    }
-    fn on_event(
-        &mut self,
-        _i: usize,
-        _t: f64,
-        _y: &mut State<2>,
-        _ctl: &mut Control,
-    ) -> EventAction {
-        self.in_contact = !self.in_contact;
-        EventAction::Restart
-    }
-}
 
 fn drop_twice(method: Method, rtol: f64) -> cushion_ode::Solution<2> {
     drop_for(method, rtol, 2)
@@ -67,13 +25,16 @@ fn drop_for(method: Method, rtol: f64, impacts: u32) -> cushion_ode::Solution<2>
         atol: Tolerance::Scalar(rtol * 1e-3),
         ..Default::default()
     };
-    solve(
-        &mut Ball { in_contact: false },
-        0.0,
-        State::<2>::new(HEIGHT, 0.0),
-        t_end,
-        &opts,
-    )
+    // `y'' = -g`, and `+ (K/m) (-y)^1.5` while in contact (`y < 0`); each contact's onset and
+    // end restarts the integration
+    let mut ball = HertzRebound {
+        k_over_m: K_OVER_M,
+        gravity: G,
+        in_contact: false,
+        declares_kink: false,
+        keeps_bouncing: true,
+    };
+    solve(&mut ball, 0.0, State::<2>::new(HEIGHT, 0.0), t_end, &opts)
 }
 
 /// Two impacts, each a contact 0.1 ms long. The steps land on the forecast contact onsets

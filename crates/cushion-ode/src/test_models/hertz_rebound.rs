@@ -1,8 +1,9 @@
-//! A lone elastic Hertz rebound after a flight: a body flies at `v0` for 5 ms onto a wall,
-//! `x'' = (K/m) (-x)^1.5` while in contact, with no other force. Energy is conserved, so it
-//! leaves the wall as fast as it hit it. The contact begins and ends as events that restart
-//! the integration; the force sets in and vanishes like `delta^1.5` at them, and its end is
-//! declared a kink of `f` ([`OdeSystem::kinked_at_event`]) unless told not to.
+//! A body against a Hertzian wall: `x'' = (K/m) (-x)^1.5 - g` while in contact (`x < 0`),
+//! `-g` in flight. The contact begins and ends as events that restart the integration; the
+//! force sets in and vanishes like `delta^1.5` at them, and its end may be declared a kink of
+//! `f` ([`OdeSystem::kinked_at_event`]). [`rebound`]: a lone elastic rebound after a flight at
+//! `v0` with no gravity, which must leave the wall as fast as it hit it;
+//! `tests/stiff_contact.rs` drops a ball on a steel-like floor and lets it bounce.
 
 use crate::{
     solve, Control, Direction, EventAction, Method, OdeSystem, SolverOptions, State, Tolerance,
@@ -15,9 +16,13 @@ const FLIGHT: f64 = 5e-3;
 pub struct HertzRebound {
     /// Wall stiffness over the body's mass (N/m^1.5/kg).
     pub k_over_m: f64,
+    /// Acceleration towards the wall (m/s^2).
+    pub gravity: f64,
     pub in_contact: bool,
     /// Whether it says that `f` is kinked where the contact ends.
     pub declares_kink: bool,
+    /// Whether the run goes on after a lift-off (else it stops there).
+    pub keeps_bouncing: bool,
 }
 
 impl OdeSystem<2> for HertzRebound {
@@ -27,7 +32,7 @@ impl OdeSystem<2> for HertzRebound {
         } else {
             0.0
         };
-        State::<2>::new(y[1], push)
+        State::<2>::new(y[1], push - self.gravity)
     }
     fn event_count(&self) -> usize {
         1
@@ -52,10 +57,10 @@ impl OdeSystem<2> for HertzRebound {
         _y: &mut State<2>,
         _ctl: &mut Control,
     ) -> EventAction {
-        if self.in_contact {
+        if self.in_contact && !self.keeps_bouncing {
             return EventAction::Stop;
         }
-        self.in_contact = true;
+        self.in_contact = !self.in_contact;
         EventAction::Restart
     }
 }
@@ -80,8 +85,10 @@ pub fn rebound(
     };
     let mut body = HertzRebound {
         k_over_m,
+        gravity: 0.0,
         in_contact: false,
         declares_kink,
+        keeps_bouncing: false,
     };
     let sol = solve(
         &mut body,
