@@ -134,6 +134,15 @@ pub trait Stepper<const N: usize> {
     fn dense_stability_boundary(&self) -> f64 {
         f64::INFINITY
     }
+    /// The `h |lambda|` ([`Stepper::stiffness_estimate`]) above which an accepted step that
+    /// jumped (`solve.rs`, `GUARD_GROWTH`) is taken again, shorter: for a method whose error
+    /// estimate can pass a step past its stability boundary. Infinite (the default) where the
+    /// estimate grows with the step past it, as DOPRI5's does; DOP853's boundary for it
+    /// ([`crate::dop853::STABILITY_GUARD`]).
+    #[inline]
+    fn stability_guard(&self) -> f64 {
+        f64::INFINITY
+    }
     /// Whether the loop ends this method's steps on the system's forecast kinks
     /// ([`crate::system::OdeSystem::kink_count`], `kinks.rs`): for a method of high order,
     /// whose long steps a kink inside costs rejections and errors its estimate misses. False
