@@ -337,11 +337,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 adaptive && !guarded && x > stepper.stability_guard() && h > GUARD_GROWTH * h_before
             }) {
                 // a step that jumped past the method's stability boundary and that its error
-                // estimate passed: counted as rejected and taken again at the stiffness
-                // threshold, once (`GUARD_GROWTH`).
-                self.stats.steps -= 1;
-                self.stats.rejected += 1;
-                (self.fresh, self.on_kink) = (fresh, on_kink);
+                // estimate passed: taken again at the stiffness threshold, once
+                // (`GUARD_GROWTH`).
+                self.take_back(fresh, on_kink);
                 h *= stepper.stiffness_threshold() / x;
                 guarded = true;
                 continue;
@@ -373,10 +371,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             );
             if let Some(t_kink) = self.events.take_redo() {
                 // a kink of `f` well inside the step: its estimate did not see it. The step
-                // counts as rejected and is taken again to end just past the crossing.
-                self.stats.steps -= 1;
-                self.stats.rejected += 1;
-                (self.fresh, self.on_kink) = (fresh, on_kink);
+                // is taken again to end just past the crossing.
+                self.take_back(fresh, on_kink);
                 h = (t_kink - t) * (1.0 + LAND_PAST);
                 taken_again = true;
                 continue;
@@ -556,6 +552,16 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             );
         }
         Tried::Accepted(h_new)
+    }
+
+    /// The step just accepted is not kept but taken again from the same point: it counts as
+    /// rejected, and the restart flags it cleared (`fresh`, `on_kink`, as they were before it)
+    /// are set back, so that the step taken again is judged as the first after the restart
+    /// if this one was.
+    fn take_back(&mut self, fresh: bool, on_kink: bool) {
+        self.stats.steps -= 1;
+        self.stats.rejected += 1;
+        (self.fresh, self.on_kink) = (fresh, on_kink);
     }
 
     /// Hairer's stiffness test on an accepted step from `t` of size `h`, with the method's
