@@ -18,6 +18,10 @@
 //! its retry (`retry_after_discontinuity`) keep it within 2.1e-6; such an event starts from
 //! Hairer's selection each time.
 //!
+//! A first step that the loop takes back after accepting it (a kinked crossing found inside it,
+//! a jump past the stability boundary: `solve.rs`, `take_back`) is not learned: it counts as the
+//! first attempt rejected, as it does in the run's statistics.
+//!
 //! Guarded by `tests/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
 
 use crate::system::MAX_EVENTS;
@@ -39,6 +43,9 @@ pub(crate) struct RestartSteps {
     learning: Option<(usize, bool)>,
     /// An attempt since that restart was rejected.
     rejected: bool,
+    /// What the last accepted step learned: its event and what that event's first step was
+    /// before, so that [`RestartSteps::taken_back`] can undo it.
+    last_learned: Option<((usize, bool), f64)>,
 }
 
 impl RestartSteps {
@@ -48,6 +55,7 @@ impl RestartSteps {
             rejected_first: [[f64::INFINITY; 2]; MAX_EVENTS],
             learning: None,
             rejected: false,
+            last_learned: None,
         }
     }
 
@@ -77,10 +85,12 @@ impl RestartSteps {
     /// event the next time, if the first attempt since the restart was accepted; else none
     /// (Hairer's selection again).
     pub(crate) fn accepted(&mut self, h: f64, err: Option<f64>, order: u32) {
+        self.last_learned = None;
         let Some((i, rising)) = self.learning.take() else {
             return;
         };
         let k = rising as usize;
+        self.last_learned = Some(((i, rising), self.next_first[i][k]));
         if self.rejected {
             self.next_first[i][k] = f64::NAN;
             return;
@@ -89,6 +99,17 @@ impl RestartSteps {
         // (NaN growth, from err = NaN, keeps h); never below the size just accepted
         let next = h * growth.max(1.0);
         self.next_first[i][k] = next.min(BELOW_REJECTED * self.rejected_first[i][k]).max(h);
+    }
+
+    /// The step of size `h` just accepted is taken back and tried again from the same point:
+    /// what it taught is undone, and it counts as a rejected attempt (so the restart that
+    /// preceded it, if any, is learning again).
+    pub(crate) fn taken_back(&mut self, h: f64) {
+        if let Some(((i, rising), before)) = self.last_learned.take() {
+            self.next_first[i][rising as usize] = before;
+            self.learning = Some((i, rising));
+        }
+        self.rejected(h);
     }
 }
 
@@ -128,5 +149,31 @@ mod tests {
         // learned again from a tiny error, but kept below half the rejected guess
         r.accepted(1e-6, Some(1e-12), 5);
         assert!(close(r.restart(lift_off), 0.5 * guess));
+    }
+
+    /// A first step taken back after it was accepted teaches nothing, and counts as the first
+    /// attempt rejected: the retry is not learned, and later guesses stay below half of it.
+    #[test]
+    fn a_first_step_taken_back_is_not_learned() {
+        let mut r = RestartSteps::new();
+        let onset = Some((1, false));
+        assert_eq!(r.restart(onset), None);
+        r.accepted(1e-6, Some(1e-10), 5);
+        assert!(close(r.restart(onset), 1e-5));
+        // this restart's first step (the learned 1e-5) is accepted, then taken back
+        r.accepted(1e-5, Some(1e-10), 5);
+        r.taken_back(1e-5);
+        // its retry is accepted: a restart whose first attempt failed is not learned
+        r.accepted(2e-6, Some(1e-10), 5);
+        assert_eq!(r.restart(onset), None);
+        // learned again later, but kept below half the step taken back
+        r.accepted(1e-6, Some(1e-12), 5);
+        assert!(close(r.restart(onset), 5e-6));
+        // a step taken back that was not a restart's first changes nothing learned
+        r.accepted(5e-6, Some(1e-10), 5);
+        r.accepted(1e-4, Some(1e-10), 5);
+        r.taken_back(1e-4);
+        r.accepted(5e-5, Some(1e-10), 5);
+        assert!(close(r.restart(onset), 5e-6));
     }
 }

@@ -339,7 +339,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 // a step that jumped past the method's stability boundary and that its error
                 // estimate passed: taken again at the stiffness threshold, once
                 // (`GUARD_GROWTH`).
-                self.take_back(fresh, on_kink);
+                self.take_back(fresh, on_kink, h);
                 h *= stepper.stiffness_threshold() / x;
                 guarded = true;
                 continue;
@@ -372,7 +372,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             if let Some(t_kink) = self.events.take_redo() {
                 // a kink of `f` well inside the step: its estimate did not see it. The step
                 // is taken again to end just past the crossing.
-                self.take_back(fresh, on_kink);
+                self.take_back(fresh, on_kink, h);
                 h = (t_kink - t) * (1.0 + LAND_PAST);
                 taken_again = true;
                 continue;
@@ -557,11 +557,13 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
     /// The step just accepted is not kept but taken again from the same point: it counts as
     /// rejected, and the restart flags it cleared (`fresh`, `on_kink`, as they were before it)
     /// are set back, so that the step taken again is judged as the first after the restart
-    /// if this one was.
-    fn take_back(&mut self, fresh: bool, on_kink: bool) {
+    /// if this one was; a restart's first step of size `h` is not learned
+    /// (`restart_steps.rs`).
+    fn take_back(&mut self, fresh: bool, on_kink: bool, h: f64) {
         self.stats.steps -= 1;
         self.stats.rejected += 1;
         (self.fresh, self.on_kink) = (fresh, on_kink);
+        self.restart_steps.taken_back(h);
     }
 
     /// Hairer's stiffness test on an accepted step from `t` of size `h`, with the method's
