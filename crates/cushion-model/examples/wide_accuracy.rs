@@ -4,11 +4,13 @@
 //! largest error of each summary value relative to its scale (speeds to `v_max`, the impulse to
 //! the larger of itself and `(m_t + m_p) v_max`, the peak force to itself, the stroke to the stroke length, the
 //! detection time to `t_end`), how many runs' impact counts differ, and the worst scenes:
-//! `wide_accuracy [N] [SEED]` (print a scene with `wide_scenes N SEED K`: the same draw).
+//! `wide_accuracy [N] [SEED] [--method M]` (print a scene with `wide_scenes N SEED K`: the same
+//! draw; `--method`: the runs at rtol 1e-6 under `dop853`, `rodas` or `auto`, the reference
+//! still `dp5`).
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
 mod support;
-use support::wide::{count_and_seed, draw, impact_counts, Corners};
+use support::wide::{count_and_seed, draw, impact_counts, method_flag, with_method, Corners};
 
 fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
     let mut s = s.clone();
@@ -18,7 +20,9 @@ fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
 }
 
 fn main() {
-    let mut args = std::env::args().skip(1);
+    let mut all: Vec<String> = std::env::args().skip(1).collect();
+    let method = method_flag(&mut all);
+    let mut args = all.into_iter();
     let (n, seed) = count_and_seed(&mut args);
     let mut u = support::Uniform::new(seed);
     let names = [
@@ -34,7 +38,7 @@ fn main() {
     let (mut compared, mut counts_differ, mut not_ok) = (0, Vec::new(), Vec::new());
     for i in 0..n {
         let s = draw(&mut u, Corners::NONE);
-        let a = run(&s, 1e-6, 1e-9);
+        let a = run(&with_method(s.clone(), method.as_deref()), 1e-6, 1e-9);
         let b = run(&s, 1e-11, 1e-14);
         if a.status != RunStatus::Ok || b.status != RunStatus::Ok {
             not_ok.push(format!(

@@ -6,8 +6,9 @@
 //! peak or 1 mN, strokes to the stroke; over the scenes that detect the impact), and lists
 //! every run that did not end `ok` (a panic would end `invalid`, "internal error"), whose
 //! ledger residual exceeds `1000 rtol`, or that detects the impact and differs by more than
-//! `1000 rtol`: `wide_scenes [N] [SEED] [K] [--corners]` (with K: print scene K as TOML
-//! instead; `--corners`: 6 % of the scenes in the rarer corners of `support/wide.rs`).
+//! `1000 rtol`: `wide_scenes [N] [SEED] [K] [--corners] [--method M]` (with K: print scene K as
+//! TOML instead; `--corners`: 6 % of the scenes in the rarer corners of `support/wide.rs`;
+//! `--method`: every adaptive scene under `dop853`, `rodas` or `auto` instead of `dp5`).
 use cushion_model::{simulate, RunOptions, RunStatus};
 
 mod support;
@@ -26,7 +27,8 @@ fn off(a: Option<f64>, b: Option<f64>, scale: f64) -> f64 {
 fn main() {
     // `--corners`: 6 % of the scenes in the rarer corners (the compressible liquid, fixed-step
     // methods, a low step limit, the stiffness test stopping the run)
-    let all: Vec<String> = std::env::args().skip(1).collect();
+    let mut all: Vec<String> = std::env::args().skip(1).collect();
+    let method = support::wide::method_flag(&mut all);
     let corners = if all.iter().any(|a| a == "--corners") {
         support::wide::Corners::SOME
     } else {
@@ -51,7 +53,7 @@ fn main() {
     let (mut detected, mut touched, mut idle_differ, mut fixed) = (0, 0, 0, 0);
     let mut worst_residual = (0.0f64, 0usize);
     for i in 0..n {
-        let s = draw(&mut u, corners);
+        let s = support::wide::with_method(draw(&mut u, corners), method.as_deref());
         if show == Some(i) {
             print!("{}", toml::to_string(&s.to_toml()).expect("a table"));
             return;

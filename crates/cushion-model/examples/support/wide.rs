@@ -16,6 +16,24 @@ pub fn count_and_seed(args: &mut impl Iterator<Item = String>) -> (usize, u64) {
     (n, seed)
 }
 
+/// The `--method M` flag of the wide-scene examples, taken out of `args`: the adaptive method
+/// every drawn scene is run with (the draw's own, `dp5`, without it; a corner's fixed-step
+/// method is kept).
+pub fn method_flag(args: &mut Vec<String>) -> Option<String> {
+    let at = args.iter().position(|a| a == "--method")?;
+    args.remove(at);
+    (at < args.len()).then(|| args.remove(at))
+}
+
+/// `s` under the adaptive `method` of [`method_flag`], if one was given and `s` is adaptive.
+pub fn with_method(mut s: Scene, method: Option<&str>) -> Scene {
+    if let Some(m) = method.filter(|_| s.solver.method.is_adaptive()) {
+        s.set_from_str("solver.method", m)
+            .unwrap_or_else(|e| panic!("--method {m}: {e}"));
+    }
+    s
+}
+
 /// A run with its trajectory recorded as a user plots it: every step, every event, and samples
 /// every `t_end / 2000`.
 pub fn run_recorded(s: &Scene) -> RunResult {
