@@ -32,6 +32,15 @@
 //! takes the step again, once, ending just past it (`solve.rs`). The crossing is then found
 //! at the end of the new step and handled there. Guarded by
 //! `tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
+//!
+//! Crossings on a dense output that is not stable. Where a step is held by stability (DOP853
+//! past its continuous extension's boundary, `Stepper::dense_stability_boundary`), or passed
+//! its error test far past it because the stiff mode was at rest, the states its dense output
+//! gives inside the step are amplified rounding, not the solution: a crossing found there may
+//! not exist, and its time and state are not to be trusted. The loop asks the scan to report
+//! every crossing of such a step instead of handling it, and takes the step again short enough
+//! for its dense output to be stable (`solve.rs`). Guarded by
+//! `cushion-model/tests/dop853_at_rest.rs`.
 
 use crate::dense::DenseOutput;
 use crate::event_dip as dip;
@@ -312,7 +321,8 @@ impl<const N: usize> EventScan<N> {
     ///
     /// With `redo_kinked`, a first crossing that is a kink of `f`, between [`REDO_AFTER`] and
     /// [`REDO_BEFORE`] of the step, is neither handled nor logged: the scan returns `Continue`
-    /// at `t1` with `self.g` as on entry, and [`EventScan::take_redo`] gives the crossing.
+    /// at `t1` with `self.g` as on entry, and [`EventScan::take_redo`] gives the crossing. With
+    /// `redo_any` (the step's dense output is not stable: module doc), so is any first crossing.
     #[allow(clippy::too_many_arguments)]
     pub fn scan<S: OdeSystem<N>>(
         &mut self,
@@ -323,6 +333,7 @@ impl<const N: usize> EventScan<N> {
         ctl: &mut Control,
         stats: &mut Stats,
         redo_kinked: bool,
+        redo_any: bool,
     ) -> (f64, State<N>, EventAction) {
         let n = self.n;
         if n == 0 {
@@ -412,12 +423,11 @@ impl<const N: usize> EventScan<N> {
                 k += 1;
                 continue;
             }
-            if redo_kinked
-                && !handled
+            let kinked = redo_kinked
                 && t_first > t0 + REDO_AFTER * (t1 - t0)
                 && t_first < t0 + REDO_BEFORE * (t1 - t0)
-                && (0..n).any(|i| times[i] == t_first && sys.kinked_at_event(i))
-            {
+                && (0..n).any(|i| times[i] == t_first && sys.kinked_at_event(i));
+            if !handled && (redo_any || kinked) {
                 self.redo_at = Some(t_first);
                 return (t1, *y1, EventAction::Continue);
             }

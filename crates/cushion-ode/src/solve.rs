@@ -14,7 +14,7 @@ use crate::restart_steps::RestartSteps;
 use crate::rodas::Rodas;
 use crate::solution::{Solution, Stats, Status};
 use crate::stepper::{Attempt, Counted, ExplicitRk, StepFailure, Stepper};
-use crate::stiffness::StiffnessDetector;
+use crate::stiffness::{StiffnessDetector, DENSE_MARGIN};
 use crate::system::{Control, EventAction, OdeSystem, Step};
 use crate::tableau::{CLASSICAL_RK4, EXPLICIT_EULER};
 use crate::State;
@@ -52,6 +52,11 @@ const LAND_PAST: f64 = 0.01;
 /// ratios: guarding every step past it cost DOP853 10 to 15 % more evaluations on the design
 /// space, guarding the jumps 0.03 to 0.3 % (`docs/accuracy.md`, section 7).
 const GUARD_GROWTH: f64 = 2.0;
+
+/// A step taken again for a crossing on its unstable dense output aims this far inside the
+/// dense output's stable range (`stiffness::DENSE_MARGIN` of its boundary), since `h |lambda|`
+/// is estimated, not known.
+const REDO_STABLE: f64 = 0.9;
 
 /// At most this many steps in a row are shortened to a forecast crossing; then one step of the
 /// controller's own size. A function that closes on zero without crossing it would otherwise
@@ -259,8 +264,20 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         let mut taken_again = false;
         // the attempt is a step taken again at the stiffness threshold (`GUARD_GROWTH`)
         let mut guarded = false;
-        // the controller's size for the last step kept (before a forecast or a stop cut it)
-        let mut h_before = f64::INFINITY;
+        // the controller's size for the last step kept (before a forecast or a stop cut it);
+        // the run's first step has none before it, so past the boundary it counts as a jump (a
+        // run that starts at rest on a stiff stop passes its error test at any length there:
+        // `cushion-model/tests/dop853_at_rest.rs`)
+        let mut h_before = 0.0;
+        // the attempt is a step taken again for a crossing found on a dense output that was
+        // not stable (`events.rs`, "Crossings on a dense output that is not stable")
+        let mut dense_redone = false;
+        // `|lambda|` of the stiff mode, once a step was taken again for it (past the stability
+        // boundary, or for its unstable dense output): the steps after are held at the
+        // stiffness threshold. Where that mode is at rest, no error estimate limits them, and
+        // the controller's next step would jump past the boundary again and be taken again,
+        // every other step (`cushion-model/tests/dop853_at_rest.rs`).
+        let mut held: Option<f64> = None;
         // Every attempt is written here in place (`Stepper::step_into`).
         let mut attempt = Attempt::<N>::empty();
 
@@ -289,7 +306,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             // controller's own size is kept for the steps after.
             let h_ctrl = h;
             let mut forecast_limited = false;
-            if adaptive && limited_streak < MAX_FORECAST_STEPS {
+            // (not a step taken again for its unstable dense output: it must be long enough
+            // to hold the crossing it found, not a sliver short of a forecast one)
+            if adaptive && limited_streak < MAX_FORECAST_STEPS && !dense_redone {
                 let to_crossing = (self.events.next_crossing() - self.t) * (1.0 + LAND_PAST);
                 if to_crossing < h && to_crossing > 1e3 * f64::EPSILON * self.t.abs() {
                     h = to_crossing;
@@ -340,6 +359,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 // estimate passed: taken again at the stiffness threshold, once
                 // (`GUARD_GROWTH`).
                 self.take_back(fresh, on_kink, h);
+                held = Some(x / h);
                 h *= stepper.stiffness_threshold() / x;
                 guarded = true;
                 continue;
@@ -359,7 +379,10 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             let t1 = if landing { next_stop } else { t + h };
             let dense = stepper.dense(t, t1 - t, &y, &f0, &attempt);
 
-            // Events inside (t, t1].
+            // Events inside (t, t1]. On a dense output that is not stable, any crossing asks
+            // for the step again, once, short enough for it to be stable.
+            let dense_limit = DENSE_MARGIN * dense_bound;
+            let unstable_at = h_lambda.filter(|&x| adaptive && !dense_redone && x > dense_limit);
             let (t_cut, y_cut, action) = self.events.scan(
                 &mut *self.sys,
                 &dense,
@@ -368,16 +391,30 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 &mut ctl,
                 &mut self.stats,
                 stepper.lands_on_kinks() && !taken_again,
+                unstable_at.is_some(),
             );
             if let Some(t_kink) = self.events.take_redo() {
-                // a kink of `f` well inside the step: its estimate did not see it. The step
-                // is taken again to end just past the crossing.
                 self.take_back(fresh, on_kink, h);
-                h = (t_kink - t) * (1.0 + LAND_PAST);
-                taken_again = true;
+                if let Some(x) = unstable_at {
+                    held = Some(x / h);
+                    h *= REDO_STABLE * dense_limit / x;
+                    dense_redone = true;
+                } else {
+                    // a kink of `f` well inside the step: its estimate did not see it. The
+                    // step is taken again to end just past the crossing.
+                    h = (t_kink - t) * (1.0 + LAND_PAST);
+                    taken_again = true;
+                }
                 continue;
             }
             taken_again = false;
+            dense_redone = false;
+            if let Some(lambda) = held.as_mut() {
+                if let Some(x) = h_lambda {
+                    *lambda = x / h;
+                }
+                h_new = h_new.min(stepper.stiffness_threshold() / *lambda);
+            }
             h_before = h_ctrl;
             let cut = action != EventAction::Continue;
             let (t_new, y_new) = if cut {
