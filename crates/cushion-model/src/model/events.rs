@@ -353,7 +353,15 @@ impl Model {
                         self.regime.tool_stuck = true;
                         self.regime.tool_dir = 0.0;
                     } else {
-                        self.regime.tool_dir = e.f_f.signum();
+                        let dir = e.f_f.signum();
+                        if dir == self.regime.tool_dir {
+                            // The slip speed touched zero and turns back: the same slip goes
+                            // on, `f` is unchanged, and a restart would only find the same
+                            // touch again at once (under Rodas, at every step, until the step
+                            // limit: `tests/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
+                            return EventAction::Continue;
+                        }
+                        self.regime.tool_dir = dir;
                     }
                 }
                 EventAction::Restart
