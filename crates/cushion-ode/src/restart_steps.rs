@@ -18,9 +18,9 @@
 //! its retry (`retry_after_discontinuity`) keep it within 2.1e-6; such an event starts from
 //! Hairer's selection each time.
 //!
-//! A first step that the loop takes back after accepting it (a kinked crossing found inside it,
-//! a jump past the stability boundary: `solve.rs`, `take_back`) is not learned: it counts as the
-//! first attempt rejected, as it does in the run's statistics.
+//! A step is learned from once the loop keeps it: a first step that the loop takes back after
+//! accepting it (a kinked crossing found inside it, a jump past the stability boundary:
+//! `solve.rs`, `take_back`) is reported as rejected, as the run's statistics count it.
 //!
 //! Guarded by `tests/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
 
@@ -43,9 +43,6 @@ pub(crate) struct RestartSteps {
     learning: Option<(usize, bool)>,
     /// An attempt since that restart was rejected.
     rejected: bool,
-    /// What the last accepted step learned: its event and what that event's first step was
-    /// before, so that [`RestartSteps::taken_back`] can undo it.
-    last_learned: Option<((usize, bool), f64)>,
 }
 
 impl RestartSteps {
@@ -55,7 +52,6 @@ impl RestartSteps {
             rejected_first: [[f64::INFINITY; 2]; MAX_EVENTS],
             learning: None,
             rejected: false,
-            last_learned: None,
         }
     }
 
@@ -80,17 +76,16 @@ impl RestartSteps {
         }
     }
 
-    /// A step of size `h` was accepted with the scaled error `err` (`None`: not estimated).
+    /// A step of size `h` was accepted with the scaled error `err` (`None`: not estimated) and
+    /// kept.
     /// If it is the first since the restart after an event: the step to try first after that
     /// event the next time, if the first attempt since the restart was accepted; else none
     /// (Hairer's selection again).
     pub(crate) fn accepted(&mut self, h: f64, err: Option<f64>, order: u32) {
-        self.last_learned = None;
         let Some((i, rising)) = self.learning.take() else {
             return;
         };
         let k = rising as usize;
-        self.last_learned = Some(((i, rising), self.next_first[i][k]));
         if self.rejected {
             self.next_first[i][k] = f64::NAN;
             return;
@@ -99,17 +94,6 @@ impl RestartSteps {
         // (NaN growth, from err = NaN, keeps h); never below the size just accepted
         let next = h * growth.max(1.0);
         self.next_first[i][k] = next.min(BELOW_REJECTED * self.rejected_first[i][k]).max(h);
-    }
-
-    /// The step of size `h` just accepted is taken back and tried again from the same point:
-    /// what it taught is undone, and it counts as a rejected attempt (so the restart that
-    /// preceded it, if any, is learning again).
-    pub(crate) fn taken_back(&mut self, h: f64) {
-        if let Some(((i, rising), before)) = self.last_learned.take() {
-            self.next_first[i][rising as usize] = before;
-            self.learning = Some((i, rising));
-        }
-        self.rejected(h);
     }
 }
 
@@ -160,9 +144,9 @@ mod tests {
         assert_eq!(r.restart(onset), None);
         r.accepted(1e-6, Some(1e-10), 5);
         assert!(close(r.restart(onset), 1e-5));
-        // this restart's first step (the learned 1e-5) is accepted, then taken back
-        r.accepted(1e-5, Some(1e-10), 5);
-        r.taken_back(1e-5);
+        // this restart's first step (the learned 1e-5) is accepted but taken back: the loop
+        // reports it as rejected, and reports no acceptance
+        r.rejected(1e-5);
         // its retry is accepted: a restart whose first attempt failed is not learned
         r.accepted(2e-6, Some(1e-10), 5);
         assert_eq!(r.restart(onset), None);
@@ -171,8 +155,7 @@ mod tests {
         assert!(close(r.restart(onset), 5e-6));
         // a step taken back that was not a restart's first changes nothing learned
         r.accepted(5e-6, Some(1e-10), 5);
-        r.accepted(1e-4, Some(1e-10), 5);
-        r.taken_back(1e-4);
+        r.rejected(1e-4);
         r.accepted(5e-5, Some(1e-10), 5);
         assert!(close(r.restart(onset), 5e-6));
     }

@@ -75,8 +75,9 @@ fn is_finite<const N: usize>(a: &Attempt<N>) -> bool {
 /// What became of one attempted step.
 enum Tried {
     /// Accepted (and completed; the attempt is where the loop keeps it), with the step size
-    /// the controller proposes next.
-    Accepted(f64),
+    /// the controller proposes next and the scaled error it was accepted with (`None`: not
+    /// estimated), which `RestartSteps` learns from once the loop keeps the step.
+    Accepted(f64, Option<f64>),
     /// Rejected, or failed before its error estimate: try again with this size.
     Retry(f64),
     /// The run ends here.
@@ -334,9 +335,14 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
             let (t, y, f0) = (self.t, self.y, self.f);
             let (fresh, on_kink) = (self.fresh, self.on_kink);
-            let mut h_new = match self.attempt(stepper, &mut controller, adaptive, h, &mut attempt)
-            {
-                Tried::Accepted(h_new) => h_new,
+            let (mut h_new, err_norm) = match self.attempt(
+                stepper,
+                &mut controller,
+                adaptive,
+                h,
+                &mut attempt,
+            ) {
+                Tried::Accepted(h_new, err_norm) => (h_new, err_norm),
                 Tried::Retry(h_retry) => {
                     h = h_retry;
                     continue;
@@ -409,6 +415,8 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             taken_again = false;
             dense_redone = false;
+            // the step is kept: only now may it teach a restart its first step
+            self.restart_steps.accepted(h, err_norm, stepper.order());
             if let Some(lambda) = held.as_mut() {
                 if let Some(x) = h_lambda {
                     *lambda = x / h;
@@ -574,7 +582,6 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         self.stats.steps += 1;
         self.fresh = false;
         self.on_kink = false;
-        self.restart_steps.accepted(h, err_norm, stepper.order());
         // What the method evaluates for accepted steps only (DOP853: f(y1), dense stages).
         let counted = Counted::new(&*self.sys);
         let completed = stepper.complete(&counted, t, &y, h, attempt);
@@ -588,19 +595,18 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 format!("f is not finite at the accepted state at t = {}", t + h),
             );
         }
-        Tried::Accepted(h_new)
+        Tried::Accepted(h_new, err_norm)
     }
 
     /// The step just accepted is not kept but taken again from the same point: it counts as
     /// rejected, and the restart flags it cleared (`fresh`, `on_kink`, as they were before it)
     /// are set back, so that the step taken again is judged as the first after the restart
-    /// if this one was; a restart's first step of size `h` is not learned
-    /// (`restart_steps.rs`).
+    /// if this one was; for `RestartSteps`, the attempt of size `h` was rejected.
     fn take_back(&mut self, fresh: bool, on_kink: bool, h: f64) {
         self.stats.steps -= 1;
         self.stats.rejected += 1;
         (self.fresh, self.on_kink) = (fresh, on_kink);
-        self.restart_steps.taken_back(h);
+        self.restart_steps.rejected(h);
     }
 
     /// Hairer's stiffness test on an accepted step from `t` of size `h`, with the method's
