@@ -387,8 +387,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
             // Events inside (t, t1]. On a dense output that is not stable, any crossing asks
             // for the step again, once, short enough for it to be stable.
-            let dense_limit = DENSE_MARGIN * dense_bound;
-            let unstable_at = h_lambda.filter(|&x| adaptive && !dense_redone && x > dense_limit);
+            let unstable_at = h_lambda.filter(|_| adaptive && !dense_redone && !dense_stable);
             let (t_cut, y_cut, action) = self.events.scan(
                 &mut *self.sys,
                 &dense,
@@ -403,7 +402,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 self.take_back(fresh, on_kink, h);
                 if let Some(x) = unstable_at {
                     held = Some(x / h);
-                    h *= REDO_STABLE * dense_limit / x;
+                    h *= REDO_STABLE * DENSE_MARGIN * dense_bound / x;
                     dense_redone = true;
                 } else {
                     // a kink of `f` well inside the step: its estimate did not see it. The
