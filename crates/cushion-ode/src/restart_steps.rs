@@ -20,7 +20,12 @@
 //!
 //! A step is learned from once the loop keeps it: a first step that the loop takes back after
 //! accepting it (a kinked crossing found inside it, a jump past the stability boundary:
-//! `solve.rs`, `take_back`) is reported as rejected, as the run's statistics count it.
+//! `solve.rs`, `take_back`) is reported as rejected, as the run's statistics count it. And
+//! only the part the run kept is learned: a first step that the next event cut short is
+//! learned as its length up to that event. Learned whole, an attempt of which the run kept a
+//! picosecond was tried again at every recurrence, grown each time, and the same event found a
+//! picosecond into it, until the step limit (under Rodas, on an event function that sits at
+//! zero to within rounding: `cushion-model/tests/recurring_events.rs`).
 //!
 //! Guarded by `tests/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
 
@@ -76,8 +81,8 @@ impl RestartSteps {
         }
     }
 
-    /// A step of size `h` was accepted with the scaled error `err` (`None`: not estimated) and
-    /// kept.
+    /// A step was accepted with the scaled error `err` (`None`: not estimated) and kept up to
+    /// `h` after its start.
     /// If it is the first since the restart after an event: the step to try first after that
     /// event the next time, if the first attempt since the restart was accepted; else none
     /// (Hairer's selection again).
@@ -86,7 +91,8 @@ impl RestartSteps {
             return;
         };
         let k = rising as usize;
-        if self.rejected {
+        // (a step cut by an event at its very start kept nothing to learn from)
+        if self.rejected || !(h > 0.0) {
             self.next_first[i][k] = f64::NAN;
             return;
         }
@@ -158,5 +164,21 @@ mod tests {
         r.rejected(1e-4);
         r.accepted(5e-5, Some(1e-10), 5);
         assert!(close(r.restart(onset), 5e-6));
+    }
+
+    /// What a first step cut short by the next event teaches is the part the run kept (the loop
+    /// passes that length), grown as the whole step's error allows; a step cut at its very
+    /// start teaches nothing.
+    #[test]
+    fn a_first_step_cut_short_teaches_the_part_kept() {
+        let mut r = RestartSteps::new();
+        let release = Some((2, true));
+        assert_eq!(r.restart(release), None);
+        // a 13 ms attempt, accepted with err 0.97, kept up to 8e-13 s
+        r.accepted(8e-13, Some(0.97), 4);
+        let next = r.restart(release).unwrap();
+        assert!(next >= 8e-13 && next < 1e-12, "{next:e}");
+        r.accepted(0.0, Some(0.5), 4);
+        assert_eq!(r.restart(release), None);
     }
 }

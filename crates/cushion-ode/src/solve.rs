@@ -414,8 +414,6 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             taken_again = false;
             dense_redone = false;
-            // the step is kept: only now may it teach a restart its first step
-            self.restart_steps.accepted(h, err_norm, stepper.order());
             if let Some(lambda) = held.as_mut() {
                 if let Some(x) = h_lambda {
                     *lambda = x / h;
@@ -424,6 +422,11 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             }
             h_before = h_ctrl;
             let cut = action != EventAction::Continue;
+            // The step is kept: only now may it teach a restart its first step, and only the
+            // part of it the run keeps (`restart_steps.rs`;
+            // `cushion-model/tests/recurring_events.rs`).
+            let kept = if cut { t_cut - t } else { h };
+            self.restart_steps.accepted(kept, err_norm, stepper.order());
             let (t_new, y_new) = if cut {
                 (t_cut, y_cut)
             } else {
