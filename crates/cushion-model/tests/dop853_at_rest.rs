@@ -10,29 +10,19 @@
 //! stick-slip chattering at spurious crossings until the step limit. Each is checked against
 //! the same scene under DOPRI5 at rtol 1e-11.
 
-use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-fn scene(name: &str) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/scenes")
-        .join(format!("{name}.toml"));
-    Scene::from_toml_str(&std::fs::read_to_string(p).unwrap()).unwrap()
-}
+mod common;
+use common::{kept_scene, reference};
 
 /// The scene under `method` (with a step limit), and the reference under DOPRI5 at rtol 1e-11.
 fn run_and_reference(name: &str, method: &str) -> (Summary, Summary) {
-    let mut s = scene(name);
-    s.set_from_str("solver.method", method).unwrap();
+    let mut s = kept_scene(name, &[("solver.method", method)]);
     // the chattering run took the default million steps; a working run takes under 2,000
     s.solver.max_steps = 20_000;
     let r = simulate(&s, &RunOptions::default()).summary;
     assert_eq!(r.status, RunStatus::Ok, "{name}: {}", r.message);
-    let mut reference = scene(name);
-    reference.solver.rtol = 1e-11;
-    reference.solver.atol = 1e-14;
-    let reference = simulate(&reference, &RunOptions::default()).summary;
-    assert_eq!(reference.status, RunStatus::Ok);
-    (r, reference)
+    (r, reference(kept_scene(name, &[])))
 }
 
 #[test]

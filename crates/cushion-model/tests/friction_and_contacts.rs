@@ -319,19 +319,10 @@ fn a_slip_that_touches_zero_and_turns_back_goes_on() {
     // would take 1.458 N, and the friction keeps its direction. Under Rodas that test ran at
     // every step within 1e-16 s of the last, until the step limit; the run now ends `ok`, its
     // object's final speed within 1e-4 m/s (rtol 4.2e-4) of DOPRI5 at rtol 1e-11.
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes/wide-396.toml"),
-    )
-    .unwrap();
-    let mut s = Scene::from_toml_str(&text).unwrap();
+    let mut s = common::kept_scene("wide-396", &[("solver.method", "rodas")]);
     s.solver.max_steps = 20_000;
-    s.set_from_str("solver.method", "rodas").unwrap();
     let r = run(&s);
-    assert_eq!(r.summary.status, cushion_model::RunStatus::Ok, "{}", r.summary.message);
-    let mut reference = Scene::from_toml_str(&text).unwrap();
-    reference.solver.rtol = 1e-11;
-    reference.solver.atol = 1e-14;
-    let reference = run(&reference).summary;
+    let reference = common::reference(common::kept_scene("wide-396", &[]));
     let speed = |x: &cushion_model::Summary| x.object_final_velocity.unwrap();
     let off = (speed(&r.summary) - speed(&reference)).abs();
     println!("object final speed {off:.1e} m/s off, {} events", r.summary.stats.events);

@@ -11,21 +11,16 @@
 //! did so again after every restart until the million-step limit. Each scene is checked
 //! against itself under DOPRI5 at rtol 1e-11.
 
-use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
+use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-fn scene(name: &str) -> Scene {
-    let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/scenes")
-        .join(format!("{name}.toml"));
-    Scene::from_toml_str(&std::fs::read_to_string(p).unwrap()).unwrap()
-}
+mod common;
+use common::{kept_scene, reference, run_ok};
 
 /// The scene under `method` (with a step limit), and the reference under DOPRI5 at rtol 1e-11.
 fn run_and_reference(name: &str, method: &str) -> (Summary, Summary) {
-    let mut s = scene(name);
-    s.set_from_str("solver.method", method).unwrap();
-    // (the stiffness test is DOPRI5's; the reference below keeps the scene's `warn`)
-    s.set_from_str("solver.stiffness", "warn").unwrap();
+    // (the stiffness test is DOPRI5's; the reference keeps the scene's `warn` as well)
+    let warn = ("solver.stiffness", "warn");
+    let mut s = kept_scene(name, &[("solver.method", method), warn]);
     // the chattering runs took the default million steps; a working one takes under 200
     s.solver.max_steps = 20_000;
     let r = simulate(&s, &RunOptions::default()).summary;
@@ -35,13 +30,7 @@ fn run_and_reference(name: &str, method: &str) -> (Summary, Summary) {
         "{name} under {method}: {}",
         r.message
     );
-    let mut reference = scene(name);
-    reference.set_from_str("solver.stiffness", "warn").unwrap();
-    reference.solver.rtol = 1e-11;
-    reference.solver.atol = 1e-14;
-    let reference = simulate(&reference, &RunOptions::default()).summary;
-    assert_eq!(reference.status, RunStatus::Ok);
-    (r, reference)
+    (r, reference(kept_scene(name, &[warn])))
 }
 
 fn counts(s: &Summary) -> (u32, u32, u32) {
@@ -109,13 +98,8 @@ fn a_stick_after_a_recurring_slip_is_not_stepped_over() {
     // cut short at the stick, grew to a millisecond and stepped over a stick: the tool then
     // slipped back through its stroke, the sensor switched at 0.228 s, and the tool hit its back
     // stop twice, where the true run never detects (its largest stroke 0.64 mm, not 23.7 mm).
-    let name = "wide-4242-1219";
-    let r = simulate(&scene(name), &RunOptions::default()).summary;
-    assert_eq!(r.status, RunStatus::Ok, "{}", r.message);
-    let mut reference = scene(name);
-    reference.solver.rtol = 1e-11;
-    reference.solver.atol = 1e-14;
-    let reference = simulate(&reference, &RunOptions::default()).summary;
+    let r = run_ok(&kept_scene("wide-4242-1219", &[]));
+    let reference = reference(kept_scene("wide-4242-1219", &[]));
     let stroke = (r.max_stroke - reference.max_stroke).abs() / reference.max_stroke;
     println!(
         "detected {:?} (reference {:?}), max stroke {:.4e} m (reference {:.4e})",
