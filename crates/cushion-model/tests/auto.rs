@@ -7,7 +7,7 @@ use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
 mod common;
 
-use common::{paper, run_ok as run};
+use common::{kept_scene, paper, run_ok as run};
 
 /// The largest difference of the results a user reads, each over its own scale: speeds over
 /// the approach speed, forces over the peak force, the stroke over the stroke's scale.
@@ -155,4 +155,60 @@ fn the_compressible_liquid_is_solved_by_auto_within_its_evaluation_bound() {
     // (docs/model.md: 8.2e-5 on the peak force)
     let f = (rich.peak_robot_force - lumped.peak_robot_force).abs() / lumped.peak_robot_force.abs();
     assert!(f < 2e-4, "peak force {f:e}");
+}
+
+#[test]
+fn a_compressible_liquid_held_under_the_stability_limit_switches() {
+    // A wide corner scene (`wide_scenes 20000 1130 4917 --corners`): oil at 6.7e8 Pa behind a
+    // 10 mm orifice whose laminar range ends at 0.076 Pa, four times the tolerance on p_m. The
+    // orifice's rate beta dQ/ddp / V_m, about 1.2e9 /s, holds DOPRI5's controller at
+    // h |lambda| 1.6-1.7, half its stability boundary and under the quick switch's threshold,
+    // for a million steps (8 % of t_end); the patient switch (`cushion-ode/src/auto.rs`,
+    // `PATIENT_STEPS`) hands it to Rodas after a thousand.
+    let scene = kept_scene("wide-1130-corner-4917", &[("solver.method", "auto")]);
+    let auto = run(&scene);
+    let reference = run(&kept_scene(
+        "wide-1130-corner-4917",
+        &[
+            ("solver.method", "rodas"),
+            ("solver.rtol", "1e-10"),
+            ("solver.atol", "1e-13"),
+        ],
+    ));
+    println!("auto {:?}", auto.stats);
+    assert_eq!(auto.stats.method_switches, 1);
+    // measured: 6,648 evaluations (1,000 DOPRI5 steps, then 95 of Rodas)
+    assert!(auto.stats.rhs_evals < 20_000, "{:?}", auto.stats);
+    // the robot's peak force and impulse within the tolerance asked for (rtol 1.1e-6)
+    let rtol = scene.solver.rtol;
+    let f = (auto.peak_robot_force - reference.peak_robot_force).abs()
+        / reference.peak_robot_force.abs();
+    let j = (auto.robot_impulse - reference.robot_impulse).abs() / reference.robot_impulse.abs();
+    assert!(
+        f < 10.0 * rtol && j < 10.0 * rtol,
+        "force {f:e}, impulse {j:e}"
+    );
+}
+
+#[test]
+fn the_compressible_liquid_at_a_loose_tolerance_switches_early() {
+    // At rtol 1e-4 the paper scene with a stiff liquid (1e10 Pa) held DOPRI5 under the quick
+    // switch's threshold for 545,000 steps (3.27 M evaluations) before it switched; the
+    // patient switch does so after a thousand (9,210 evaluations in all)
+    let scene = |method| {
+        paper(
+            "paper-hydraulic-dt70",
+            &[
+                ("hydraulic.bulk_modulus", "1e10"),
+                ("solver.rtol", "1e-4"),
+                ("solver.atol", "1e-7"),
+                ("solver.method", method),
+            ],
+        )
+    };
+    let auto = run(&scene("auto"));
+    let rodas = run(&scene("rodas"));
+    println!("auto {:?}\nrodas {:?}", auto.stats, rodas.stats);
+    assert!(auto.stats.rhs_evals < 30_000, "{:?}", auto.stats);
+    assert!(difference(&auto, &rodas) < 1e-4);
 }

@@ -6,7 +6,14 @@
 //!   (`stiffness::h_lambda`, free: two evaluations the step made anyway); after
 //!   [`TO_STIFF_STEPS`] steps in a row above [`stiffness::THRESHOLD`] (0.9 of DOPRI5's
 //!   stability boundary, `AutoSwitch`'s `stifftol`) its step is held by stability, not
-//!   accuracy, and it switches to Rodas.
+//!   accuracy, and it switches to Rodas. It also switches after [`PATIENT_STEPS`] steps in a
+//!   row above [`PATIENT_FRACTION`] of the boundary (`h |lambda|` about 1): a mode that
+//!   decays or turns by a radian or more on every one of that many steps carries nothing the
+//!   tolerance resolves, so only stability can hold the steps there. A stiff mode through a
+//!   nonlinear law can hold DOPRI5's controller well under the boundary: the compressible
+//!   liquid's orifice, laminar below a transition pressure of the size of the tolerance on
+//!   `p_m`, held it at `h |lambda|` 1.6-1.7 for a million steps
+//!   (`cushion-model/tests/auto.rs::a_compressible_liquid_held_under_the_stability_limit_switches`).
 //! - Each accepted Rodas step has the Jacobian of its start; the spectral radius `rho` of it
 //!   (`stiffness::spectral_radius`, a power iteration) says whether DOPRI5 would be stable
 //!   with the step Rodas takes next. After [`TO_NONSTIFF_STEPS`] steps in a row with
@@ -42,6 +49,13 @@ pub const TO_STIFF_STEPS: u32 = 10;
 /// loose tolerances), which must not restart the count, while a run broken for longer is an
 /// accuracy-bound stretch. Hairer's test tolerates 5.
 pub const TO_STIFF_BREAKS: u32 = 2;
+/// DOPRI5 steps in a row above [`PATIENT_FRACTION`] of the boundary before switching to Rodas
+/// (the module's doc). No paper scene or design-space run takes this many DOPRI5 steps in a row
+/// near its stability limit; a run held there takes them in microseconds.
+pub const PATIENT_STEPS: u32 = 1000;
+/// The share of DOPRI5's stability boundary above which a long run of steps counts towards the
+/// patient switch: `h |lambda|` about 1.
+pub const PATIENT_FRACTION: f64 = 0.3;
 /// Rodas steps in a row with room for DOPRI5 before switching back, the first time; doubled
 /// by every later return to Rodas.
 pub const TO_NONSTIFF_STEPS: u32 = 5;
@@ -60,11 +74,10 @@ pub struct AutoSwitch<const N: usize> {
     t: f64,
     y: State<N>,
     h: f64,
-    /// Steps in a row for the switch, the steps since the last that counted, and when the
-    /// run began.
-    in_a_row: u32,
-    breaks: u32,
-    run_started: f64,
+    /// The steps in a row towards a switch: held at the threshold (or, under Rodas, with
+    /// room for DOPRI5), and near the limit for the patient switch.
+    held: Run,
+    near: Run,
     nonstiff_steps_needed: u32,
     pending: Option<Switch>,
     switches: u64,
@@ -81,9 +94,8 @@ impl<const N: usize> AutoSwitch<N> {
             t: 0.0,
             y: State::<N>::zeros(),
             h: 0.0,
-            in_a_row: 0,
-            breaks: 0,
-            run_started: 0.0,
+            held: Run::default(),
+            near: Run::default(),
             nonstiff_steps_needed: TO_NONSTIFF_STEPS,
             pending: None,
             switches: 0,
@@ -98,10 +110,21 @@ impl<const N: usize> AutoSwitch<N> {
             Method::Dp5
         }
     }
+}
 
-    /// Count one accepted step towards a switch; `true` when the run is long enough. A run
+/// A run of accepted steps in a row towards a switch.
+#[derive(Clone, Copy, Debug, Default)]
+struct Run {
+    /// Steps that counted, the steps since the last that counted, and when the run began.
+    in_a_row: u32,
+    breaks: u32,
+    started: f64,
+}
+
+impl Run {
+    /// Count one accepted step from `t`; `true` when the run is `needed` steps long. A run
     /// survives up to `breaks_allowed` steps in a row that do not count (they add nothing).
-    fn count(&mut self, towards_switch: bool, needed: u32, breaks_allowed: u32) -> bool {
+    fn count(&mut self, t: f64, towards_switch: bool, needed: u32, breaks_allowed: u32) -> bool {
         if !towards_switch {
             self.breaks += 1;
             if self.breaks > breaks_allowed {
@@ -111,7 +134,7 @@ impl<const N: usize> AutoSwitch<N> {
         }
         self.breaks = 0;
         if self.in_a_row == 0 {
-            self.run_started = self.t;
+            self.started = t;
         }
         self.in_a_row += 1;
         self.in_a_row >= needed
@@ -223,10 +246,10 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
             let rho = stiffness::spectral_radius(self.implicit.jacobian(), &scale);
             let room = self.h * rho < NONSTIFF_FRACTION * STABILITY_BOUNDARY;
             self.implicit.accepted();
-            if self.count(room, self.nonstiff_steps_needed, 0) {
+            if self.held.count(self.t, room, self.nonstiff_steps_needed, 0) {
                 self.pending = Some(Switch {
                     to: Method::Dp5,
-                    since: self.run_started,
+                    since: self.held.started,
                     h_max: if rho > 0.0 {
                         NONSTIFF_FRACTION * STABILITY_BOUNDARY / rho
                     } else {
@@ -236,11 +259,23 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
             }
         } else {
             self.explicit.accepted();
-            let held = self.h_lambda.is_some_and(|hl| hl > THRESHOLD);
-            if self.count(held, TO_STIFF_STEPS, TO_STIFF_BREAKS) {
+            let above = |limit: f64| self.h_lambda.is_some_and(|hl| hl > limit);
+            let (held, near) = (
+                above(THRESHOLD),
+                above(PATIENT_FRACTION * STABILITY_BOUNDARY),
+            );
+            let t = self.t;
+            let switch_at = if self.held.count(t, held, TO_STIFF_STEPS, TO_STIFF_BREAKS) {
+                Some(self.held.started)
+            } else if self.near.count(t, near, PATIENT_STEPS, TO_STIFF_BREAKS) {
+                Some(self.near.started)
+            } else {
+                None
+            };
+            if let Some(since) = switch_at {
                 self.pending = Some(Switch {
                     to: Method::Rodas,
-                    since: self.run_started,
+                    since,
                     h_max: f64::INFINITY,
                 });
             }
@@ -268,8 +303,8 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
             self.nonstiff_steps_needed = self.nonstiff_steps_needed.saturating_mul(2);
         }
         self.stiff = to_stiff;
-        self.in_a_row = 0;
-        self.breaks = 0;
+        self.held = Run::default();
+        self.near = Run::default();
         self.switches += 1;
         // a new Jacobian is due at the next Rodas step whatever came before
         self.implicit.restart();
@@ -312,18 +347,47 @@ mod tests {
     }
 
     #[test]
+    fn a_long_run_near_the_stability_limit_switches_to_rodas() {
+        let a_run_of = |h_lambda: f64, steps: u32| {
+            let mut a = AutoSwitch::<1>::new(&SolverOptions::default());
+            a.h_lambda = Some(h_lambda);
+            for _ in 0..steps {
+                a.accepted();
+            }
+            a.take_switch().map(|s| s.to)
+        };
+        // under the threshold of the quick switch, above a radian a step
+        let near = 0.5 * STABILITY_BOUNDARY;
+        assert!(near < THRESHOLD && near > PATIENT_FRACTION * STABILITY_BOUNDARY);
+        assert_eq!(a_run_of(near, PATIENT_STEPS - 1), None);
+        assert_eq!(a_run_of(near, PATIENT_STEPS), Some(Method::Rodas));
+        // an accuracy-bound run never switches, however long
+        assert_eq!(
+            a_run_of(0.25 * STABILITY_BOUNDARY, 10 * PATIENT_STEPS),
+            None
+        );
+        // and the quick switch still takes its ten steps
+        assert_eq!(
+            a_run_of(THRESHOLD * 1.01, TO_STIFF_STEPS),
+            Some(Method::Rodas)
+        );
+    }
+
+    #[test]
     fn a_switch_needs_its_steps_in_a_row() {
-        let mut a = AutoSwitch::<1>::new(&SolverOptions::default());
+        let mut run = Run::default();
         for i in 0..TO_STIFF_STEPS - 1 {
-            a.t = i as f64;
-            assert!(!a.count(true, TO_STIFF_STEPS, 0));
+            assert!(!run.count(i as f64, true, TO_STIFF_STEPS, 0));
         }
         // one step off the limit starts the count again
-        assert!(!a.count(false, TO_STIFF_STEPS, 0));
+        assert!(!run.count(50.0, false, TO_STIFF_STEPS, 0));
         for i in 0..TO_STIFF_STEPS {
-            a.t = 100.0 + i as f64;
-            assert_eq!(a.count(true, TO_STIFF_STEPS, 0), i + 1 == TO_STIFF_STEPS);
+            let t = 100.0 + i as f64;
+            assert_eq!(
+                run.count(t, true, TO_STIFF_STEPS, 0),
+                i + 1 == TO_STIFF_STEPS
+            );
         }
-        assert_eq!(a.run_started, 100.0);
+        assert_eq!(run.started, 100.0);
     }
 }
