@@ -163,7 +163,7 @@ fn a_compressible_liquid_held_under_the_stability_limit_switches() {
     // 10 mm orifice whose laminar range ends at 0.076 Pa, four times the tolerance on p_m. The
     // orifice's rate beta dQ/ddp / V_m, about 1.2e9 /s, holds DOPRI5's controller at
     // h |lambda| 1.6-1.7, half its stability boundary and under the quick switch's threshold,
-    // for a million steps (8 % of t_end); the patient switch (`cushion-ode/src/auto.rs`,
+    // for a million steps (43 % of t_end); the patient switch (`cushion-ode/src/auto.rs`,
     // `PATIENT_STEPS`) hands it to Rodas after a thousand.
     let scene = kept_scene("wide-1130-corner-4917", &[("solver.method", "auto")]);
     let auto = run(&scene);
@@ -193,8 +193,8 @@ fn a_compressible_liquid_held_under_the_stability_limit_switches() {
 #[test]
 fn the_compressible_liquid_at_a_loose_tolerance_switches_early() {
     // At rtol 1e-4 the paper scene with a stiff liquid (1e10 Pa) held DOPRI5 under the quick
-    // switch's threshold for 545,000 steps (3.27 M evaluations) before it switched; the
-    // patient switch does so after a thousand (9,210 evaluations in all)
+    // switch's threshold for 543,000 steps (3.27 M evaluations) before it switched; the
+    // patient switch does so after a thousand (8,556 evaluations in all)
     let scene = |method| {
         paper(
             "paper-hydraulic-dt70",
