@@ -166,3 +166,35 @@ fn extreme_scenes_end_with_a_status() {
         }
     }
 }
+
+#[test]
+fn a_run_at_its_step_limit_says_when_stability_held_its_steps() {
+    // Wide corner scene 4917 (`tests/auto.rs`): the compressible liquid's orifice holds DOPRI5
+    // at h |lambda| 1.6-1.7, under the stiffness test's threshold (2.98), so the flag stays
+    // down; the message tells the user that the steps were held by stability and what solves it
+    let s = common::kept_scene("wide-1130-corner-4917", &[("solver.max_steps", "20000")]);
+    let r = simulate(&s, &RunOptions::default()).summary;
+    assert_eq!(r.status, RunStatus::MaxSteps);
+    assert!(!r.stats.stiff);
+    assert!(
+        r.message.contains("held by the method's stability") && r.message.contains("rodas"),
+        "{}",
+        r.message
+    );
+    // a run whose 3,000 steps its accuracy holds (the paper scene at rtol 1e-12, 5,862 steps
+    // to its end) says nothing of the kind when it runs out of them
+    let r = simulate(
+        &with(
+            Scene::default(),
+            &[
+                ("solver.rtol", "1e-12"),
+                ("solver.atol", "1e-15"),
+                ("solver.max_steps", "3000"),
+            ],
+        ),
+        &RunOptions::default(),
+    )
+    .summary;
+    assert_eq!(r.status, RunStatus::MaxSteps);
+    assert!(!r.message.contains("stability"), "{}", r.message);
+}

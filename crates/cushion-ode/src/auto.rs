@@ -37,7 +37,11 @@ use crate::rodas::Rodas;
 use crate::solution::Stats;
 pub use crate::stepper::Switch;
 use crate::stepper::{Attempt, StepFailure, Stepper};
-use crate::stiffness::{self, STABILITY_BOUNDARY, THRESHOLD};
+// PATIENT_*: no paper scene or design-space run takes a thousand DOPRI5 steps in a row near
+// its stability limit; a run held there takes them in microseconds
+use crate::stiffness::{
+    self, PATIENT_BREAKS, PATIENT_FRACTION, PATIENT_STEPS, STABILITY_BOUNDARY, THRESHOLD,
+};
 use crate::system::OdeSystem;
 use crate::State;
 
@@ -49,13 +53,6 @@ pub const TO_STIFF_STEPS: u32 = 10;
 /// loose tolerances), which must not restart the count, while a run broken for longer is an
 /// accuracy-bound stretch. Hairer's test tolerates 5.
 pub const TO_STIFF_BREAKS: u32 = 2;
-/// DOPRI5 steps in a row above [`PATIENT_FRACTION`] of the boundary before switching to Rodas
-/// (the module's doc). No paper scene or design-space run takes this many DOPRI5 steps in a row
-/// near its stability limit; a run held there takes them in microseconds.
-pub const PATIENT_STEPS: u32 = 1000;
-/// The share of DOPRI5's stability boundary above which a long run of steps counts towards the
-/// patient switch: `h |lambda|` about 1.
-pub const PATIENT_FRACTION: f64 = 0.3;
 /// Rodas steps in a row with room for DOPRI5 before switching back, the first time; doubled
 /// by every later return to Rodas.
 pub const TO_NONSTIFF_STEPS: u32 = 5;
@@ -267,7 +264,7 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
             let t = self.t;
             let switch_at = if self.held.count(t, held, TO_STIFF_STEPS, TO_STIFF_BREAKS) {
                 Some(self.held.started)
-            } else if self.near.count(t, near, PATIENT_STEPS, TO_STIFF_BREAKS) {
+            } else if self.near.count(t, near, PATIENT_STEPS, PATIENT_BREAKS) {
                 Some(self.near.started)
             } else {
                 None

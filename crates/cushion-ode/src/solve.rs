@@ -284,10 +284,20 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
 
         loop {
             if self.stats.steps + self.stats.rejected >= self.opts.max_steps {
-                let msg = format!(
+                let mut msg = format!(
                     "step limit {} reached at t = {}",
                     self.opts.max_steps, self.t
                 );
+                if let Some(n) = stiffness.held_near_limit() {
+                    // `stiffness::PATIENT_STEPS`; `cushion-model/tests/statuses.rs`
+                    msg.push_str(&format!(
+                        "; {n} steps in a row up to here were held by the method's stability, \
+                         not its accuracy (h*lambda above {:.2} on each): the problem is stiff \
+                         there, and an implicit method (rodas, or auto) takes it in far fewer \
+                         steps",
+                        stiffness.near_limit()
+                    ));
+                }
                 return (Status::MaxSteps, msg);
             }
             // The next point the step must land on exactly.
