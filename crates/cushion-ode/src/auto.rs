@@ -40,7 +40,7 @@ use crate::stepper::{Attempt, StepFailure, Stepper};
 // PATIENT_*: no paper scene or design-space run takes a thousand DOPRI5 steps in a row near
 // its stability limit; a run held there takes them in microseconds
 use crate::stiffness::{
-    self, PATIENT_BREAKS, PATIENT_FRACTION, PATIENT_STEPS, STABILITY_BOUNDARY, THRESHOLD,
+    self, Run, PATIENT_BREAKS, PATIENT_FRACTION, PATIENT_STEPS, STABILITY_BOUNDARY, THRESHOLD,
 };
 use crate::system::OdeSystem;
 use crate::State;
@@ -106,35 +106,6 @@ impl<const N: usize> AutoSwitch<N> {
         } else {
             Method::Dp5
         }
-    }
-}
-
-/// A run of accepted steps in a row towards a switch.
-#[derive(Clone, Copy, Debug, Default)]
-struct Run {
-    /// Steps that counted, the steps since the last that counted, and when the run began.
-    in_a_row: u32,
-    breaks: u32,
-    started: f64,
-}
-
-impl Run {
-    /// Count one accepted step from `t`; `true` when the run is `needed` steps long. A run
-    /// survives up to `breaks_allowed` steps in a row that do not count (they add nothing).
-    fn count(&mut self, t: f64, towards_switch: bool, needed: u32, breaks_allowed: u32) -> bool {
-        if !towards_switch {
-            self.breaks += 1;
-            if self.breaks > breaks_allowed {
-                self.in_a_row = 0;
-            }
-            return false;
-        }
-        self.breaks = 0;
-        if self.in_a_row == 0 {
-            self.started = t;
-        }
-        self.in_a_row += 1;
-        self.in_a_row >= needed
     }
 }
 

@@ -37,7 +37,7 @@ pub const STABILITY_BOUNDARY: f64 = 6.393_651_522_851_909;
 
 /// The loop's stiffness threshold on `h |lambda|` under DOP853: 0.9 of its stability boundary,
 /// as [`crate::stiffness::THRESHOLD`] is of DOPRI5's (the code DOP853 itself tests 6.1).
-pub const STIFFNESS_THRESHOLD: f64 = 0.9 * STABILITY_BOUNDARY;
+pub const STIFFNESS_THRESHOLD: f64 = crate::stiffness::THRESHOLD_SHARE * STABILITY_BOUNDARY;
 
 /// The `h |lambda|` past which an accepted DOP853 step that jumped is taken again
 /// ([`crate::stepper::Stepper::stability_guard`]): its stability boundary. The combined

@@ -57,10 +57,38 @@ pub struct StiffnessDetector {
     run_started: Option<f64>,
     /// The method's threshold ([`crate::stepper::Stepper::stiffness_threshold`]).
     threshold: f64,
-    /// Steps in a row above [`PATIENT_FRACTION`] of the boundary, and the steps since the
-    /// last that counted.
-    near_in_a_row: u32,
-    near_breaks: u32,
+    /// The steps in a row above [`PATIENT_FRACTION`] of the boundary.
+    near: Run,
+}
+
+/// A run of accepted steps in a row towards a verdict (held near the stability limit; for
+/// `auto`, a switch), which survives a few steps in a row that do not count.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Run {
+    /// Steps that counted, the steps since the last that counted, and when the run began.
+    pub(crate) in_a_row: u32,
+    breaks: u32,
+    pub(crate) started: f64,
+}
+
+impl Run {
+    /// Count one accepted step from `t`; `true` when the run is `needed` steps long. A run
+    /// survives up to `breaks_allowed` steps in a row that do not count (they add nothing).
+    pub(crate) fn count(&mut self, t: f64, counts: bool, needed: u32, breaks_allowed: u32) -> bool {
+        if !counts {
+            self.breaks += 1;
+            if self.breaks > breaks_allowed {
+                self.in_a_row = 0;
+            }
+            return false;
+        }
+        self.breaks = 0;
+        if self.in_a_row == 0 {
+            self.started = t;
+        }
+        self.in_a_row += 1;
+        self.in_a_row >= needed
+    }
 }
 
 /// DOPRI5's threshold ([`THRESHOLD`]).
@@ -74,8 +102,13 @@ impl Default for StiffnessDetector {
 /// stability polynomial `R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24 + z^5/120 + z^6/600`.
 pub const STABILITY_BOUNDARY: f64 = 3.306_567_892_634_946;
 
-/// Threshold on `h * |lambda|`: 0.9 of [`STABILITY_BOUNDARY`] (see the module's doc).
-pub const THRESHOLD: f64 = 0.9 * STABILITY_BOUNDARY;
+/// The share of a method's stability boundary that its stiffness threshold is (see the
+/// module's doc).
+pub const THRESHOLD_SHARE: f64 = 0.9;
+
+/// Threshold on `h * |lambda|`: [`THRESHOLD_SHARE`] of [`STABILITY_BOUNDARY`] (see the
+/// module's doc).
+pub const THRESHOLD: f64 = THRESHOLD_SHARE * STABILITY_BOUNDARY;
 /// Stiff steps in a row before the test fires.
 pub const STIFF_STEPS: u32 = 15;
 /// Non-stiff steps that reset the count.
@@ -108,21 +141,19 @@ impl StiffnessDetector {
             non_stiff: 0,
             run_started: None,
             threshold,
-            near_in_a_row: 0,
-            near_breaks: 0,
+            near: Run::default(),
         }
     }
 
-    /// `h |lambda|` above which a step counts towards [`PATIENT_STEPS`] (the threshold is 0.9
-    /// of the boundary).
+    /// `h |lambda|` above which a step counts towards [`PATIENT_STEPS`].
     pub fn near_limit(&self) -> f64 {
-        PATIENT_FRACTION / 0.9 * self.threshold
+        PATIENT_FRACTION / THRESHOLD_SHARE * self.threshold
     }
 
     /// The steps in a row held near the stability limit up to the last one observed, if they
     /// are [`PATIENT_STEPS`] or more.
     pub fn held_near_limit(&self) -> Option<u32> {
-        (self.near_in_a_row >= PATIENT_STEPS).then_some(self.near_in_a_row)
+        (self.near.in_a_row >= PATIENT_STEPS).then_some(self.near.in_a_row)
     }
 
     /// The threshold on `h |lambda|`.
@@ -133,15 +164,8 @@ impl StiffnessDetector {
     /// Feed one accepted step that started at `t` with estimate `h_lambda`. Returns
     /// `Some(start)` the step the test fires, with the time its stiff run began.
     pub fn observe(&mut self, t: f64, h_lambda: f64) -> Option<f64> {
-        if h_lambda > self.near_limit() {
-            self.near_in_a_row += 1;
-            self.near_breaks = 0;
-        } else {
-            self.near_breaks += 1;
-            if self.near_breaks > PATIENT_BREAKS {
-                self.near_in_a_row = 0;
-            }
-        }
+        let near = h_lambda > self.near_limit();
+        self.near.count(t, near, PATIENT_STEPS, PATIENT_BREAKS);
         if h_lambda > self.threshold {
             self.non_stiff = 0;
             if self.stiff_in_a_row == 0 {
