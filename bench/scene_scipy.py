@@ -3,11 +3,11 @@
 
 A reference for speed and for results: `solve_ivp` RK45 at the same tolerances as the Rust
 engine (rtol 1e-6, atol 1e-9), 4 states (x_t, v_t, x_p, v_p), the same physics as
-shared/SPEC.md sections 1-2 (sign-correct orifice, adiabatic gas, Hunt-Crossley contacts clamped
-at F >= 0, both end-stops, static preload equilibrium). Contacts are switched inside the
-right-hand side (no contact events: the plain way a SciPy user writes it); the sensor is a
-terminal event, and the robot's kinks are segment boundaries (sensor -> brake -> stop -> t_end),
-so the integrator never steps across them.
+docs/model.md, sections "Contacts" and "Hydraulic module" (sign-correct orifice, adiabatic gas,
+Hunt-Crossley contacts clamped at F >= 0, both end-stops, static preload equilibrium).
+Contacts are switched inside the right-hand side (no contact events: the plain way a SciPy user
+writes it); the sensor is a terminal event, and the robot's kinks are segment boundaries
+(sensor -> brake -> stop -> t_end), so the integrator never steps across them.
 
     .venv/bin/python bench/scene_scipy.py [--runs N] [--dead-time S] [--method M] [--rtol R]
 
@@ -27,7 +27,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-# Paper Table 1 and SPEC section 2 defaults (SI).
+# Paper Table 1 and the defaults of docs/model.md, "Parameters and defaults" (SI).
 L = 0.023
 M_T, M_P = 0.048, 0.246
 R_P, R_O = 0.020, 0.008

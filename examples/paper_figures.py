@@ -2,7 +2,8 @@
 
     python examples/paper_figures.py [OUTDIR]        # default: docs/figures of this repository
 
-The paper (shared/seed/hydraulic-collision-mitigation.md) lost its figures; its text says what
+The copy of the paper this project works from ("Development of a hydraulic system for the
+mitigation of end-effector collisions") is text only, its figures lost; its text says what
 each one showed. The files written here, and the paper figure each stands for:
 
 fig3-hydraulic-dt70.png

@@ -137,7 +137,7 @@ def test_defaults_keys_and_load_scene():
         assert d["module"] == module
         assert list(d) == list(keys.key)
     d = cushion.defaults()
-    # SPEC section 2's Table 1 values and section 7's defaults
+    # the paper's Table 1 values and the defaults (docs/model.md, "Parameters and defaults")
     assert d["robot.dead_time"] == 0.070 and d["hydraulic.gas_pressure"] == 1000.0
     assert d["object.mass"] == 0.246 and d["solver.method"] == "dp5"
     assert dict(zip(keys.key, keys.default)) == d

@@ -1,4 +1,4 @@
-//! Random scenes far outside the paper's: every key of SPEC section 7 drawn over a wide range
+//! Random scenes far outside the paper's: every key of docs/scene-keys.md drawn over a wide range
 //! (masses 5 g-1 kg, approach speed 0.05-3 m/s, stiffnesses 1e4-1e8, rtol 1e-9-1e-3, ...),
 //! each run twice: as given, and to `t_end` (early end and ringing tail off). Prints how the
 //! runs ended and the worst differences between the two runs of each scene, relative to the

@@ -1,11 +1,12 @@
-//! The energy ledger (SPEC section 5): the robot's work against what the tool and object hold
-//! and what was dissipated, at the end of a run. Its residual is a free accuracy check.
+//! The energy ledger (`docs/model.md`, section "Energy ledger"): the robot's work against what the
+//! tool and object hold and what was dissipated, at the end of a run. Its residual is a free
+//! accuracy check.
 
 use crate::config::Module;
 use crate::model::Model;
 use crate::physics;
 
-/// The terms of the energy ledger at the end of a run (SPEC section 5), J.
+/// The terms of the energy ledger at the end of a run (`docs/model.md`, "Energy ledger"), J.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EnergyLedger {
     /// Work done by the robot on the module, `int -F_r v_r dt`.

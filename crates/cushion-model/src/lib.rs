@@ -1,14 +1,15 @@
-//! `cushion-model`: the physics of `shared/SPEC.md`.
+//! `cushion-model`: the physics of `docs/model.md`.
 //!
-//! A [`Scene`] (the TOML keys of SPEC section 7) is checked, then assembled into an ODE system
-//! holding only the parts it names, solved with `cushion-ode`, and reduced to a [`Summary`]
-//! (SPEC section 5) and, when asked, a [`Trajectory`] and the event log.
+//! A [`Scene`] (the TOML keys of `docs/scene-keys.md`) is checked, then assembled into an ODE
+//! system holding only the parts it names, solved with `cushion-ode`, and reduced to a
+//! [`Summary`] (`docs/model.md`, "Summary fields") and, when asked, a [`Trajectory`] and the
+//! event log.
 //!
-//! Frames (SPEC section 1): +x is the direction of approach; `x_r` flange, `x_t` tool face,
-//! `x_p` object face; stroke `s = x_r - x_t` (0 at the forward stop, `L` at the back stop).
-//! SI units throughout.
+//! Frames (`docs/model.md`, "Scene and frames"): +x is the direction of approach; `x_r` flange,
+//! `x_t` tool face, `x_p` object face; stroke `s = x_r - x_t` (0 at the forward stop, `L` at the
+//! back stop). SI units throughout.
 //!
-//! # Modelling choices (where SPEC.md is silent, or where physics asked for more)
+//! # Modelling choices (where the paper is silent, or where physics asked for more)
 //!
 //! - **Contacts** (Hunt–Crossley) are clamped at `F >= 0`: the unclamped law pulls the bodies
 //!   together during fast restitution (`dd < -k/chi`, 0.44 m/s for the paper's values). The
@@ -48,7 +49,7 @@
 //!   samples near the largest value so far is located at once by Brent's search on the dense
 //!   output around it (`peaks.rs`). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
-//!   the tolerance (tested). SPEC names the standing robot; the same end is taken while the robot
+//!   the tolerance (tested). Besides the standing robot, the same end is taken while the robot
 //!   cruises on with no brake before `t_end` (a preload too strong for the sensor to switch, or
 //!   a dead time past the run), once the object is gone and the tool is stuck or at rest on its
 //!   stop (`resting.rs`): nothing can change any more there either.
@@ -60,8 +61,9 @@
 //!   `t_end`).
 //! - **Cavitation** (extension, off by default): `p_m >= hydraulic.cavitation_pressure`, with
 //!   events at its onset and end; the orifice then carries `p_cav - p1`.
-//! - **Compressible liquid** (SPEC section 6, `hydraulic.bulk_modulus > 0`): the main chamber
-//!   pressure `p_m` and the liquid volume moved through the orifice `V_x` become states,
+//! - **Compressible liquid** (`docs/model.md`, "Compressible liquid",
+//!   `hydraulic.bulk_modulus > 0`): the main chamber pressure `p_m` and the liquid volume moved
+//!   through the orifice `V_x` become states,
 //!   `dp_m/dt = beta / (V_m0 - A_p s) (A_p sd - Q)`, `dV_x/dt = Q`, the orifice passes
 //!   `Q = A_o sgn(p_m - p1) sqrt(2 |p_m - p1| / (c0 rho))` (the lumped law solved for the flow),
 //!   the gas sees `V_g = V_g0 - V_x`; the tool feels `p_m A_p`. It starts at rest (`p_m = p1`).
@@ -83,15 +85,15 @@
 //!
 //! ## Where the paper's text and this model differ
 //!
-//! SPEC section 3 claim 1 holds as SPEC words it, but the paper also says the gas pressure is
-//! largest "in correspondence to the instant in which the robot starts decelerating". Here
-//! (paper Table 1 values, sign-correct orifice) the gas pressure peaks earlier, at about 38 ms,
-//! when tool and object have been brought back to the robot's speed (`sd = 0`, the largest
-//! stroke); it then falls slowly while gas and orifice push tool and object slightly ahead of the
-//! robot, and falls fast once the robot brakes (74.6 ms) and the tool outruns it. With the
-//! paper's unsigned orifice law (`dp >= 0` both ways) the maximum of `s` is also where `sd = 0`,
-//! so the difference is not the sign fix; the paper's parameters may differ from the table as
-//! read (its labels are garbled).
+//! The paper's first result holds as `docs/model.md` words it (section "The paper's four results"),
+//! but the paper also says the gas pressure is largest "in correspondence to the instant in which
+//! the robot starts decelerating". Here (paper Table 1 values, sign-correct orifice) the gas
+//! pressure peaks earlier, at about 38 ms, when tool and object have been brought back to the
+//! robot's speed (`sd = 0`, the largest stroke); it then falls slowly while gas and orifice push
+//! tool and object slightly ahead of the robot, and falls fast once the robot brakes (74.6 ms) and
+//! the tool outruns it. With the paper's unsigned orifice law (`dp >= 0` both ways) the maximum of
+//! `s` is also where `sd = 0`, so the difference is not the sign fix; the paper's parameters may
+//! differ from the table as read (its labels are garbled).
 //!
 //! Modules: [`config`] (scene keys, defaults, validation), [`physics`] (force laws, robot
 //! profile, preload equilibrium), [`model`] (the physics as an ODE system: right-hand side,

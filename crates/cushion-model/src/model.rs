@@ -1,6 +1,6 @@
 //! A scene assembled into an ODE system holding only the parts it names.
 //!
-//! State layout (SPEC section 6, computed at run time; [`Layout`]):
+//! State layout (`docs/model.md`, section "Scene and frames"; computed at run time, [`Layout`]):
 //! - tool `x_t, v_t` (hydraulic and bistable only: the rigid tool is the flange),
 //! - compressible liquid `p_m, V_x` (hydraulic with `hydraulic.bulk_modulus > 0` only),
 //! - object `x_p, v_p` (when `object.enabled`),
@@ -61,7 +61,8 @@ pub struct Layout {
     /// each more state costs every stage of every step.
     pub dissipated: Option<usize>,
     pub contact_impulse: Option<usize>,
-    /// Compressible liquid (SPEC section 6): `p_m` and the volume moved through the orifice.
+    /// Compressible liquid (`docs/model.md`, section "Compressible liquid"): `p_m` and the volume
+    /// moved through the orifice.
     pub liquid: Option<usize>,
     /// Energy stored by compressing the liquid (ledger, with `liquid`).
     pub e_liquid: Option<usize>,

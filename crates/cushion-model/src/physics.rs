@@ -1,9 +1,10 @@
-//! The force laws of SPEC sections 1, 2 and 4, as plain functions of their arguments, and the
-//! potential energies that go with them (for the energy ledger).
+//! The force laws of `docs/model.md` (sections "Contacts", "Hydraulic module", "Bistable module"),
+//! as plain functions of their arguments, and the potential energies that go with them (for the
+//! energy ledger).
 //!
-//! Sign conventions (SPEC section 1): +x is the direction of approach; stroke `s = x_r - x_t`,
-//! `sd = v_r - v_t`. A module force `G` is the force the module exerts on the tool along +x;
-//! it exerts `-G` on the flange, so the force on the robot is `F_r = -G`.
+//! Sign conventions (`docs/model.md`, section "Scene and frames"): +x is the direction of approach;
+//! stroke `s = x_r - x_t`, `sd = v_r - v_t`. A module force `G` is the force the module exerts on
+//! the tool along +x; it exerts `-G` on the flange, so the force on the robot is `F_r = -G`.
 //!
 //! Notes where the model goes beyond the paper's equations:
 //! - Hunt–Crossley `F = k d^1.5 + chi d^1.5 dd` is clamped at `F >= 0`: the unclamped law pulls

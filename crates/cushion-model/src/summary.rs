@@ -1,8 +1,8 @@
-//! One run's summary row (SPEC sections 5 and 7).
+//! One run's summary row (`docs/model.md`, section "Summary fields").
 
 use serde::Serialize;
 
-/// How a run ended (SPEC section 7 names).
+/// How a run ended (names and meanings: `docs/model.md`, section "Summary fields").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RunStatus {

@@ -1,8 +1,10 @@
-//! Trajectories and the event log of one run (SPEC section 5).
+//! Trajectories and the event log of one run (`docs/model.md`, sections "Summary fields" and
+//! "Events and regimes").
 
 use serde::Serialize;
 
-/// The scene at one instant. Positions in m (frames of SPEC section 1), speeds in m/s, `p1` in
+/// The scene at one instant. Positions in m (frames of `docs/model.md`, "Scene and frames"),
+/// speeds in m/s, `p1` in
 /// Pa, forces in N. Quantities a scene does not have (no object, no gas) are NaN (null in JSON).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct TrajectoryPoint {

@@ -1,8 +1,8 @@
-//! The compressible-liquid model (SPEC section 6), solved by the implicit method: the paper's
-//! scene runs to its end with a bounded number of evaluations, agrees with the lumped model to
-//! about 1e-4 at oil's bulk modulus and converges to it as the bulk modulus grows, and the
-//! orifice's laminar range (below its critical Reynolds number) changes the impact by less
-//! than the tolerance.
+//! The compressible-liquid model (`docs/model.md`, section "Compressible liquid"), solved by the
+//! implicit method: the paper's scene runs to its end with a bounded number of evaluations, agrees
+//! with the lumped model to about 1e-4 at oil's bulk modulus and converges to it as the bulk
+//! modulus grows, and the orifice's laminar range (below its critical Reynolds number) changes the
+//! impact by less than the tolerance.
 
 use cushion_model::{simulate_with_ledger, RunOptions, RunStatus, Scene};
 

@@ -1,4 +1,4 @@
-//! Scene keys: defaults of SPEC section 7, parsing, `--set`, and every bad input of issue 3
+//! Scene keys: defaults of docs/scene-keys.md, parsing, `--set`, and every bad input of issue 3
 //! rejected with a message that names the key (one test each).
 
 use cushion_model::{simulate, ConfigError, Module, RunOptions, RunStatus, Scene};

@@ -1,7 +1,7 @@
-//! Whole runs against physics: Newton's third law, preload equilibrium, energy ledger, SPEC
-//! section 3's claims on the shipped paper scenes, idle and absent parts, the robot impulse,
-//! the event log, the compressible liquid. Early ends, friction and contacts, and statuses have
-//! their own files.
+//! Whole runs against physics: Newton's third law, preload equilibrium, energy ledger, the paper's
+//! four results (`docs/model.md`) on the shipped paper scenes, idle and absent parts, the robot
+//! impulse, the event log, the compressible liquid. Early ends, friction and contacts, and statuses
+//! have their own files.
 
 use cushion_model::model::Layout;
 use cushion_model::physics::{bistable_force, gas_pressure, hunt_crossley, orifice_pressure_drop};
@@ -539,8 +539,9 @@ fn event_log_and_trajectory_are_consistent() {
     assert_eq!(r.summary.max_gas_pressure, None);
 }
 
-/// SPEC section 6: the richer hydraulic model (compressible liquid, `p_m` a state) agrees with
-/// the lumped one over the impact, costs far more steps, and an explicit method finds it stiff.
+/// `docs/model.md`, "Compressible liquid": the richer hydraulic model (compressible liquid, `p_m` a
+/// state) agrees with the lumped one over the impact, costs far more steps, and an explicit method
+/// finds it stiff.
 #[test]
 fn compressible_liquid_agrees_with_the_lumped_model_and_is_stiff() {
     let lumped = with(paper("paper-hydraulic-dt70"), &[("t_end", "0.02")]);

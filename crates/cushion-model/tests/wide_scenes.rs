@@ -1,8 +1,8 @@
-//! Scenes far outside the paper's: every key of SPEC section 7 drawn over a wide range (the draw
-//! of `examples/support/wide.rs`: masses 5 g-1 kg, approach speed 0.05-3 m/s, stiffnesses
-//! 1e4-1e8, rtol 1e-9-1e-3, friction, cavitation, start from rest, no object, ...). Every run
-//! ends `ok` with a finite summary, its energy ledger closes to the tolerance, and the early end
-//! and the ringing tail change the summary by no more than the tolerance does. The rarer
+//! Scenes far outside the paper's: every scene key (docs/scene-keys.md) drawn over a wide range
+//! (the draw of `examples/support/wide.rs`: masses 5 g-1 kg, approach speed 0.05-3 m/s,
+//! stiffnesses 1e4-1e8, rtol 1e-9-1e-3, friction, cavitation, start from rest, no object, ...).
+//! Every run ends `ok` with a finite summary, its energy ledger closes to the tolerance, and the
+//! early end and the ringing tail change the summary by no more than the tolerance does. The rarer
 //! corners (fixed-step methods, a low step limit, the stiffness test stopping the run) end
 //! with a status that says why, never a panic. A recorded trajectory agrees with its summary.
 //! `cargo run --release --example wide_scenes 5000` (and `wide_trajectories`) run many more and

@@ -4,7 +4,7 @@
 //! name = "design-space"                   # optional; default: the file's stem
 //! scene = "scenes/paper-hydraulic.toml"   # optional base scene, relative to this file, or a
 //!                                         # table of scene keys (`scene = { module = "bistable" }`)
-//! [set]                                   # optional overrides of the base scene (SPEC section 7 keys)
+//! [set]                                   # optional overrides of the base scene (docs/scene-keys.md)
 //! "solver.rtol" = 1e-6
 //! [sampling]
 //! mode = "sobol"                          # grid (default) | zip | lhs | sobol

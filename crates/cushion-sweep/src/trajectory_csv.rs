@@ -1,4 +1,4 @@
-//! One run's trajectory as CSV (SPEC section 5 columns).
+//! One run's trajectory as CSV (the columns of `docs/model.md`, section "Summary fields").
 //!
 //! Header: [`TrajectoryPoint::COLUMNS`] (`t,x_r,v_r,x_t,v_t,x_p,v_p,s,p1,F_c,F_r`), SI units
 //! (s, m, m/s, Pa, N). One row per recorded point, in time order. Numbers are written in the

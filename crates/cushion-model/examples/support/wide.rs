@@ -1,4 +1,4 @@
-//! Random scenes far outside the paper's: every key of SPEC section 7 over a wide range.
+//! Random scenes far outside the paper's: every key of docs/scene-keys.md over a wide range.
 //! Shared by `examples/wide_scenes.rs` (many scenes, a report) and `tests/wide_scenes.rs`.
 
 use super::Uniform;

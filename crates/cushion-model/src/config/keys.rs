@@ -13,7 +13,7 @@ pub struct KeyInfo {
     /// choice of words or a switch (and for `solver.atol`, which applies to every state in its own
     /// unit).
     pub unit: &'static str,
-    /// One line in a user's words, with the symbol of SPEC and the allowed values.
+    /// One line in a user's words, with the symbol of `docs/model.md` and the allowed values.
     pub description: &'static str,
 }
 
@@ -265,7 +265,9 @@ impl Scene {
         self.get_field(key).ok_or_else(|| unknown_key(key))
     }
 
-    /// Every key a user may type, in SPEC order (extensions beside their section).
+    /// Every key a user may type, section by section as `docs/scene-keys.md` lists them (`module`,
+    /// `t_end`, robot, tool, object, stops, hydraulic, bistable, solver, energy; extensions beside
+    /// their section).
     pub fn keys() -> &'static [&'static str] {
         KEY_LIST
     }

@@ -1,5 +1,6 @@
-//! Validation of a scene: every value in its range and every combination consistent (SPEC
-//! and issue 3), refused with a message that names the key, the value and what is allowed.
+//! Validation of a scene: every value in its range and every combination consistent (ranges in
+//! `docs/scene-keys.md`; combinations in `docs/model.md`, the "Validation" paragraph), refused
+//! with a message that names the key, the value and what is allowed.
 
 use super::keys::{invalid, KEY_LIST};
 use super::values::format_float;
