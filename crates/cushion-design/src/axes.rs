@@ -40,12 +40,26 @@ pub struct Axis {
 impl Axis {
     /// A continuous axis on a linear scale.
     pub fn range(key: &str, low: f64, high: f64) -> Axis {
-        Axis::with_kind(key, AxisKind::Range { low, high, scale: Scale::Linear })
+        Axis::with_kind(
+            key,
+            AxisKind::Range {
+                low,
+                high,
+                scale: Scale::Linear,
+            },
+        )
     }
 
     /// A continuous axis on a log scale.
     pub fn log_range(key: &str, low: f64, high: f64) -> Axis {
-        Axis::with_kind(key, AxisKind::Range { low, high, scale: Scale::Log })
+        Axis::with_kind(
+            key,
+            AxisKind::Range {
+                low,
+                high,
+                scale: Scale::Log,
+            },
+        )
     }
 
     /// A list axis of `count` values.
@@ -54,7 +68,10 @@ impl Axis {
     }
 
     fn with_kind(key: &str, kind: AxisKind) -> Axis {
-        Axis { key: key.to_string(), kind }
+        Axis {
+            key: key.to_string(),
+            kind,
+        }
     }
 
     /// Whether the axis is a continuous range (and so searched and split); a list axis is
@@ -83,9 +100,11 @@ impl Axis {
                 }
                 Ok(())
             }
-            AxisKind::Values { count: 0 } => {
-                Err(config(format!("{}.values", self.key), "[]", "at least one value"))
-            }
+            AxisKind::Values { count: 0 } => Err(config(
+                format!("{}.values", self.key),
+                "[]",
+                "at least one value",
+            )),
             AxisKind::Values { .. } => Ok(()),
         }
     }
@@ -128,7 +147,10 @@ impl Axis {
                     return Err(config(
                         &self.key,
                         v,
-                        format!("the index of one of its {count} values (0 to {})", count - 1),
+                        format!(
+                            "the index of one of its {count} values (0 to {})",
+                            count - 1
+                        ),
                     ));
                 }
                 Ok(v)
@@ -197,6 +219,10 @@ impl Axes {
                 format!("one value per axis ({})", self.axes.len()),
             ));
         }
-        self.axes.iter().zip(p).map(|(a, &v)| a.coordinate(v)).collect()
+        self.axes
+            .iter()
+            .zip(p)
+            .map(|(a, &v)| a.coordinate(v))
+            .collect()
     }
 }

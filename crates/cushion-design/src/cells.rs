@@ -30,7 +30,13 @@ impl Lattice {
     pub(crate) fn coordinates(&self, p: &[u32]) -> Vec<f64> {
         p.iter()
             .zip(&self.continuous)
-            .map(|(&i, &c)| if c { i as f64 / self.n as f64 } else { i as f64 })
+            .map(|(&i, &c)| {
+                if c {
+                    i as f64 / self.n as f64
+                } else {
+                    i as f64
+                }
+            })
             .collect()
     }
 
@@ -48,7 +54,11 @@ impl Lattice {
                 crate::axes::AxisKind::Values { count } => count as u32,
             })
             .collect();
-        let size = if self.ranges().next().is_some() { self.n / m } else { 0 };
+        let size = if self.ranges().next().is_some() {
+            self.n / m
+        } else {
+            0
+        };
         let total: u32 = radix.iter().product();
         (0..total)
             .map(|mut k| {
@@ -81,8 +91,17 @@ impl Lattice {
 
     /// The cell halved along every range: its `2^d` children, in corner order.
     pub(crate) fn children(&self, c: &Cell) -> Vec<Cell> {
-        let half = Cell { low: c.low.clone(), size: c.size / 2 };
-        self.corners(&half).into_iter().map(|low| Cell { low, size: half.size }).collect()
+        let half = Cell {
+            low: c.low.clone(),
+            size: c.size / 2,
+        };
+        self.corners(&half)
+            .into_iter()
+            .map(|low| Cell {
+                low,
+                size: half.size,
+            })
+            .collect()
     }
 
     /// Whether the closed cell holds lattice point `p` (corners and points on its faces too).
@@ -115,7 +134,13 @@ impl Lattice {
     pub(crate) fn interpolate(&self, c: &Cell, x: &[f64], at_corners: &[f64]) -> f64 {
         let t: Vec<f64> = self
             .ranges()
-            .map(|i| if c.size == 0 { 0.0 } else { (x[i] - c.low[i] as f64) / c.size as f64 })
+            .map(|i| {
+                if c.size == 0 {
+                    0.0
+                } else {
+                    (x[i] - c.low[i] as f64) / c.size as f64
+                }
+            })
             .collect();
         at_corners
             .iter()
@@ -139,13 +164,33 @@ mod tests {
 
     #[test]
     fn cells_split_hold_and_interpolate() {
-        let axes = Axes::new("design", vec![Axis::range("x", 0.0, 1.0), Axis::values("m", 2), Axis::range("y", 0.0, 1.0)]).unwrap();
-        let l = Lattice { n: 8, continuous: vec![true, false, true] };
+        let axes = Axes::new(
+            "design",
+            vec![
+                Axis::range("x", 0.0, 1.0),
+                Axis::values("m", 2),
+                Axis::range("y", 0.0, 1.0),
+            ],
+        )
+        .unwrap();
+        let l = Lattice {
+            n: 8,
+            continuous: vec![true, false, true],
+        };
         let cells = l.initial(&axes, 2);
         assert_eq!(cells.len(), 8);
-        assert_eq!(cells[7], Cell { low: vec![4, 1, 4], size: 4 });
+        assert_eq!(
+            cells[7],
+            Cell {
+                low: vec![4, 1, 4],
+                size: 4
+            }
+        );
         let c = &cells[0];
-        assert_eq!(l.corners(c), vec![vec![0, 0, 0], vec![4, 0, 0], vec![0, 0, 4], vec![4, 0, 4]]);
+        assert_eq!(
+            l.corners(c),
+            vec![vec![0, 0, 0], vec![4, 0, 0], vec![0, 0, 4], vec![4, 0, 4]]
+        );
         assert_eq!(l.children(c).len(), 4);
         assert!(l.holds(c, &[2, 0, 4]) && !l.holds(c, &[2, 1, 4]) && !l.holds(c, &[5, 0, 0]));
         // Half-open, except at the top of the lattice.

@@ -37,7 +37,15 @@ pub(crate) struct Climb {
 
 impl Climb {
     pub(crate) fn new(target: usize, center: Coord, center_badness: f64, step: f64) -> Climb {
-        Climb { target, center, center_badness, step, polls: 0, poll: None, done: false }
+        Climb {
+            target,
+            center,
+            center_badness,
+            step,
+            polls: 0,
+            poll: None,
+            done: false,
+        }
     }
 
     /// The points of the current stencil, building it if needed.
@@ -58,12 +66,17 @@ impl Climb {
             }
             s
         });
-        stencil.iter().flat_map(|(_, pts)| pts.iter().flatten().cloned()).collect()
+        stencil
+            .iter()
+            .flat_map(|(_, pts)| pts.iter().flatten().cloned())
+            .collect()
     }
 
     /// Decide on the polled stencil, given every point's badness: move, halve the step or stop.
     pub(crate) fn decide(&mut self, badness: impl Fn(&Coord) -> f64, rules: &Rules) {
-        let Some(stencil) = self.poll.take() else { return };
+        let Some(stencil) = self.poll.take() else {
+            return;
+        };
         self.polls += 1;
         let mut best: Option<(f64, &Coord)> = None;
         let mut gain = 0.0;
@@ -109,7 +122,11 @@ impl Climb {
 mod tests {
     use super::*;
 
-    const RULES: Rules = Rules { tolerance: 1e-6, min_step: 1e-9, max_polls: 200 };
+    const RULES: Rules = Rules {
+        tolerance: 1e-6,
+        min_step: 1e-9,
+        max_polls: 200,
+    };
 
     /// Drive one climb on a function of the normalised coordinates.
     fn climb(f: impl Fn(&Coord) -> f64, start: Coord, step: f64) -> (Climb, usize) {

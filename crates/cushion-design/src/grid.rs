@@ -36,7 +36,10 @@ impl Grid {
     }
 
     fn number(&self, idx: &[usize]) -> usize {
-        self.along.iter().zip(idx).fold(0, |k, (a, &i)| k * a.len() + i)
+        self.along
+            .iter()
+            .zip(idx)
+            .fold(0, |k, (a, &i)| k * a.len() + i)
     }
 
     /// The normalised coordinates of point `k`.
@@ -79,7 +82,11 @@ mod tests {
     fn points_neighbours_and_numbering_agree() {
         let axes = Axes::new(
             "for_all",
-            vec![Axis::range("a", 0.0, 1.0), Axis::values("b", 2), Axis::range("c", 0.0, 1.0)],
+            vec![
+                Axis::range("a", 0.0, 1.0),
+                Axis::values("b", 2),
+                Axis::range("c", 0.0, 1.0),
+            ],
         )
         .unwrap();
         let g = Grid::new(&axes, 3);

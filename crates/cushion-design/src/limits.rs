@@ -22,12 +22,22 @@ pub struct Limit {
 impl Limit {
     /// `metric <= max`.
     pub fn max(metric: &str, max: f64) -> Limit {
-        Limit { metric: metric.to_string(), max: Some(max), min: None, abs: false }
+        Limit {
+            metric: metric.to_string(),
+            max: Some(max),
+            min: None,
+            abs: false,
+        }
     }
 
     /// `metric >= min`.
     pub fn min(metric: &str, min: f64) -> Limit {
-        Limit { metric: metric.to_string(), max: None, min: Some(min), abs: false }
+        Limit {
+            metric: metric.to_string(),
+            max: None,
+            min: Some(min),
+            abs: false,
+        }
     }
 
     /// The same limit on the size `|metric|`.
@@ -87,7 +97,12 @@ impl Limits {
         if limits.is_empty() {
             return Err(config("limit", "[]", "at least one limit"));
         }
-        let mut out = Limits { metrics: Vec::new(), targets: Vec::new(), bounds: Vec::new(), objective: None };
+        let mut out = Limits {
+            metrics: Vec::new(),
+            targets: Vec::new(),
+            bounds: Vec::new(),
+            objective: None,
+        };
         for l in &limits {
             check(l)?;
             let metric = out.metric(&l.metric);
@@ -99,7 +114,11 @@ impl Limits {
             for (bound, direction, upper) in [(l.max, up, true), (l.min, down, false)] {
                 if let Some(value) = bound {
                     let target = out.target(Target { metric, direction });
-                    out.bounds.push(Bound { target, value, upper });
+                    out.bounds.push(Bound {
+                        target,
+                        value,
+                        upper,
+                    });
                 }
             }
         }
@@ -107,7 +126,11 @@ impl Limits {
             // The objective is on a metric the user limited, so its column is already asked for;
             // `abs` follows the first limit on it.
             let Some(l) = limits.iter().find(|l| l.metric == o.metric) else {
-                return Err(config("objective", &o.metric, "a metric that has a [[limit]]"));
+                return Err(config(
+                    "objective",
+                    &o.metric,
+                    "a metric that has a [[limit]]",
+                ));
             };
             let direction = match (o.sense, l.abs) {
                 (Sense::Minimize, false) => Direction::Max,
@@ -161,10 +184,18 @@ impl Limits {
     pub fn judge(&self, worst: &[Worst]) -> Judgement {
         let objective = self.objective.map(|(_, t)| {
             let w = &worst[t];
-            if w.failed { f64::NAN } else { self.targets[t].direction.size(w.value) }
+            if w.failed {
+                f64::NAN
+            } else {
+                self.targets[t].direction.size(w.value)
+            }
         });
         if worst.iter().any(|w| w.failed) {
-            return Judgement { feasible: false, margin: f64::NEG_INFINITY, objective };
+            return Judgement {
+                feasible: false,
+                margin: f64::NEG_INFINITY,
+                objective,
+            };
         }
         let margin = self
             .bounds
@@ -174,7 +205,11 @@ impl Limits {
                 distance(b, size)
             })
             .fold(f64::INFINITY, f64::min);
-        Judgement { feasible: margin >= 0.0, margin, objective }
+        Judgement {
+            feasible: margin >= 0.0,
+            margin,
+            objective,
+        }
     }
 
     /// Whether one run (its row of metric values) meets every limit.
@@ -190,14 +225,22 @@ impl Limits {
 /// The relative distance of `size` inside bound `b` (negative outside).
 fn distance(b: &Bound, size: f64) -> f64 {
     let scale = if b.value == 0.0 { 1.0 } else { b.value.abs() };
-    let d = if b.upper { b.value - size } else { size - b.value };
+    let d = if b.upper {
+        b.value - size
+    } else {
+        size - b.value
+    };
     d / scale
 }
 
 fn check(l: &Limit) -> Result<(), DesignError> {
     let key = |k: &str| format!("limit.{}.{k}", l.metric);
     if l.max.is_none() && l.min.is_none() {
-        return Err(config(format!("limit.{}", l.metric), "no bound", "max and/or min"));
+        return Err(config(
+            format!("limit.{}", l.metric),
+            "no bound",
+            "max and/or min",
+        ));
     }
     for (name, v) in [("max", l.max), ("min", l.min)] {
         if let Some(v) = v.filter(|v| !v.is_finite()) {
@@ -210,7 +253,11 @@ fn check(l: &Limit) -> Result<(), DesignError> {
         }
     }
     if let Some(max) = l.max.filter(|&m| l.abs && m < 0.0) {
-        return Err(config(key("max"), max, "at least 0 with abs = true (a size is never negative)"));
+        return Err(config(
+            key("max"),
+            max,
+            "at least 0 with abs = true (a size is never negative)",
+        ));
     }
     Ok(())
 }
@@ -220,7 +267,11 @@ mod tests {
     use super::*;
 
     fn worst(value: f64) -> Worst {
-        Worst { value, witness: vec![0.0], failed: false }
+        Worst {
+            value,
+            witness: vec![0.0],
+            failed: false,
+        }
     }
 
     #[test]
@@ -238,7 +289,11 @@ mod tests {
         let j = limits.judge(&[worst(-44.0), worst(1.0)]);
         assert!(!j.feasible);
         assert!((j.margin + 0.1).abs() < 1e-12);
-        let failed = Worst { value: f64::NAN, witness: vec![0.0], failed: true };
+        let failed = Worst {
+            value: f64::NAN,
+            witness: vec![0.0],
+            failed: true,
+        };
         let j = limits.judge(&[worst(1.0), failed]);
         assert!(!j.feasible && j.margin == f64::NEG_INFINITY);
         assert!(limits.meets(&[-39.0, 1.3]) && !limits.meets(&[41.0, 1.0]));
@@ -251,7 +306,10 @@ mod tests {
         l.min = Some(-1.0);
         let limits = Limits::new(
             vec![l],
-            Some(Objective { metric: "x".into(), sense: Sense::Minimize }),
+            Some(Objective {
+                metric: "x".into(),
+                sense: Sense::Minimize,
+            }),
         )
         .unwrap();
         assert_eq!(limits.targets().len(), 2);
@@ -271,9 +329,15 @@ mod tests {
         assert_eq!(e.to_string(), "limit.x.min = 2: at most max (1)");
         let e = Limits::new(vec![Limit::max("x", -1.0).abs()], None).unwrap_err();
         assert!(e.to_string().starts_with("limit.x.max = -1"));
-        let o = Objective { metric: "y".into(), sense: Sense::Maximize };
+        let o = Objective {
+            metric: "y".into(),
+            sense: Sense::Maximize,
+        };
         let e = Limits::new(vec![Limit::max("x", 1.0)], Some(o)).unwrap_err();
-        assert_eq!(e.to_string(), "objective = y: a metric that has a [[limit]]");
+        assert_eq!(
+            e.to_string(),
+            "objective = y: a metric that has a [[limit]]"
+        );
         assert!(Limits::new(vec![], None).is_err());
         assert!(Limits::new(vec![Limit::max("x", f64::NAN)], None).is_err());
     }

@@ -73,7 +73,10 @@ impl PointSearch {
                     self.stage = Stage::Climbing(self.starts(s, &grid));
                 }
                 Stage::Climbing(mut climbs) => {
-                    let polls = climbs.iter_mut().flat_map(|c| c.poll(&s.continuous)).collect();
+                    let polls = climbs
+                        .iter_mut()
+                        .flat_map(|c| c.poll(&s.continuous))
+                        .collect();
                     let missing = self.missing(polls);
                     if missing.is_empty() {
                         self.decide(s, &mut climbs);
@@ -192,9 +195,16 @@ impl PointSearch {
                     failed: false,
                 },
                 // A finished search has run its grid, so every target has a worst case.
-                (None, None) => Worst { value: f64::NAN, witness: Vec::new(), failed: true },
+                (None, None) => Worst {
+                    value: f64::NAN,
+                    witness: Vec::new(),
+                    failed: true,
+                },
             })
             .collect();
-        Some(WorstCases { worst, runs: self.runs.len() })
+        Some(WorstCases {
+            worst,
+            runs: self.runs.len(),
+        })
     }
 }

@@ -34,7 +34,11 @@ pub struct RefineSettings {
 
 impl Default for RefineSettings {
     fn default() -> RefineSettings {
-        RefineSettings { resolution: 1.0 / 64.0, initial_cells: None, search: SearchSettings::default() }
+        RefineSettings {
+            resolution: 1.0 / 64.0,
+            initial_cells: None,
+            search: SearchSettings::default(),
+        }
     }
 }
 
@@ -85,15 +89,29 @@ impl Refinement {
         settings: RefineSettings,
     ) -> Result<Refinement, DesignError> {
         if design.len() > 4 {
-            return Err(config("design", format!("{} axes", design.len()), "1 to 4 axes"));
+            return Err(config(
+                "design",
+                format!("{} axes", design.len()),
+                "1 to 4 axes",
+            ));
         }
-        if let Some(a) = design.axes().iter().find(|a| for_all.axes().iter().any(|b| b.key == a.key)) {
-            return Err(config(&a.key, "in design and in for_all", "a key in one of them"));
+        if let Some(a) = design
+            .axes()
+            .iter()
+            .find(|a| for_all.axes().iter().any(|b| b.key == a.key))
+        {
+            return Err(config(
+                &a.key,
+                "in design and in for_all",
+                "a key in one of them",
+            ));
         }
         let n = steps(settings.resolution)?;
         let continuous: Vec<bool> = design.axes().iter().map(|a| a.is_continuous()).collect();
         let ranges = continuous.iter().filter(|&&c| c).count();
-        let m = settings.initial_cells.unwrap_or(if ranges <= 2 { 8 } else { 4 });
+        let m = settings
+            .initial_cells
+            .unwrap_or(if ranges <= 2 { 8 } else { 4 });
         if m == 0 || m > 1 << 16 {
             return Err(config("search.initial_cells", m, "1 to 65536"));
         }
@@ -157,7 +175,9 @@ impl Refinement {
 
     fn judge_new(&mut self) {
         for id in self.judged.len()..self.nodes.len() {
-            let Some(w) = self.search.result(id) else { return };
+            let Some(w) = self.search.result(id) else {
+                return;
+            };
             let j = self.limits.judge(&w.worst);
             self.judged.push(DesignPoint {
                 design: self.search.design(id).cloned().unwrap_or_default(),
@@ -201,8 +221,14 @@ impl Refinement {
         if best.is_some_and(|b| self.lattice.holds(cell, &self.nodes[b])) {
             return true;
         }
-        let mut inside = self.judged.iter().zip(&self.nodes).filter(|(_, n)| self.lattice.holds(cell, n));
-        let Some((first, _)) = inside.next() else { return false };
+        let mut inside = self
+            .judged
+            .iter()
+            .zip(&self.nodes)
+            .filter(|(_, n)| self.lattice.holds(cell, n));
+        let Some((first, _)) = inside.next() else {
+            return false;
+        };
         let near = |p: &DesignPoint| p.margin.abs() <= self.tolerance;
         near(first) || inside.any(|(p, _)| p.feasible != first.feasible || near(p))
     }
@@ -213,10 +239,18 @@ impl Refinement {
     /// earlier point.
     fn best_id(&self) -> Option<usize> {
         let any_feasible = self.judged.iter().any(|p| p.feasible);
-        let objective = self.limits.objective().filter(|_| any_feasible).map(|(s, _)| s);
+        let objective = self
+            .limits
+            .objective()
+            .filter(|_| any_feasible)
+            .map(|(s, _)| s);
         let better = |a: &DesignPoint, b: &DesignPoint| -> bool {
             if let (Some(s), Some(x), Some(y)) = (objective, a.objective, b.objective) {
-                let (x, y) = if s == Sense::Minimize { (-x, -y) } else { (x, y) };
+                let (x, y) = if s == Sense::Minimize {
+                    (-x, -y)
+                } else {
+                    (x, y)
+                };
                 if x != y {
                     return x > y;
                 }
@@ -263,7 +297,10 @@ impl Refinement {
             .map(|c| {
                 let corners = self.lattice.corners(c);
                 let real = |n: &Node| self.design.real(&self.lattice.coordinates(n));
-                CellBounds { low: real(&corners[0]), high: real(&corners[corners.len() - 1]) }
+                CellBounds {
+                    low: real(&corners[0]),
+                    high: real(&corners[corners.len() - 1]),
+                }
             })
             .collect()
     }
@@ -273,7 +310,9 @@ impl Refinement {
     /// in, a failed corner counting as -1 (100 % beyond its limits).
     pub fn map_margin(&self, point: &[f64]) -> Result<f64, DesignError> {
         if !self.done {
-            return Err(DesignError::Protocol("the design map is asked for before it is refined".into()));
+            return Err(DesignError::Protocol(
+                "the design map is asked for before it is refined".into(),
+            ));
         }
         let c = self.design.coordinates(point)?;
         let x: Vec<f64> = c
@@ -281,8 +320,14 @@ impl Refinement {
             .zip(&self.lattice.continuous)
             .map(|(&c, &r)| if r { c * self.lattice.n as f64 } else { c })
             .collect();
-        let Some(cell) = self.cells.iter().find(|cell| self.lattice.holds_position(cell, &x)) else {
-            return Err(DesignError::Protocol(format!("no cell of the map holds {point:?}")));
+        let Some(cell) = self
+            .cells
+            .iter()
+            .find(|cell| self.lattice.holds_position(cell, &x))
+        else {
+            return Err(DesignError::Protocol(format!(
+                "no cell of the map holds {point:?}"
+            )));
         };
         let margins: Vec<f64> = self
             .lattice
@@ -290,7 +335,11 @@ impl Refinement {
             .iter()
             .map(|n| {
                 let m = self.judged[self.ids[n]].margin;
-                if m.is_finite() { m } else { -1.0 }
+                if m.is_finite() {
+                    m
+                } else {
+                    -1.0
+                }
             })
             .collect();
         Ok(self.lattice.interpolate(cell, &x, &margins))
@@ -308,7 +357,11 @@ impl Refinement {
 /// Lattice steps per design range for a resolution: the power of two at least `1/resolution`.
 fn steps(resolution: f64) -> Result<u32, DesignError> {
     if !(resolution > 0.0 && resolution <= 1.0) || resolution < 1.0 / (1u32 << 20) as f64 {
-        return Err(config("search.resolution", resolution, "a fraction in [2^-20, 1]"));
+        return Err(config(
+            "search.resolution",
+            resolution,
+            "a fraction in [2^-20, 1]",
+        ));
     }
     let n = (1.0 / resolution).ceil() as u32;
     Ok(n.next_power_of_two())

@@ -12,7 +12,11 @@ pub fn verify_grid(for_all: &Axes, n: usize) -> Result<Vec<Point>, DesignError> 
     if n < 2 {
         return Err(config("search.verify", n, "at least 2 points per range"));
     }
-    Ok(Grid::new(for_all, n).points().iter().map(|c| for_all.real(c)).collect())
+    Ok(Grid::new(for_all, n)
+        .points()
+        .iter()
+        .map(|c| for_all.real(c))
+        .collect())
 }
 
 /// What the verification grid says about a design.
@@ -33,7 +37,11 @@ pub struct Verification {
 }
 
 /// Judge the rows of the runs at `points` (one row per point, one value per metric).
-pub fn check(limits: &Limits, points: &[Point], rows: &[Vec<f64>]) -> Result<Verification, DesignError> {
+pub fn check(
+    limits: &Limits,
+    points: &[Point],
+    rows: &[Vec<f64>],
+) -> Result<Verification, DesignError> {
     let m = limits.metrics().len();
     if rows.len() != points.len() || rows.iter().any(|r| r.len() != m) {
         return Err(DesignError::Protocol(format!(
@@ -51,7 +59,11 @@ pub fn check(limits: &Limits, points: &[Point], rows: &[Vec<f64>]) -> Result<Ver
         .iter()
         .map(|t| {
             if let Some(k) = first_failed {
-                return Worst { value: f64::NAN, witness: points[k].clone(), failed: true };
+                return Worst {
+                    value: f64::NAN,
+                    witness: points[k].clone(),
+                    failed: true,
+                };
             }
             let mut k = 0;
             for (i, r) in rows.iter().enumerate() {
@@ -59,7 +71,11 @@ pub fn check(limits: &Limits, points: &[Point], rows: &[Vec<f64>]) -> Result<Ver
                     k = i;
                 }
             }
-            Worst { value: rows[k][t.metric], witness: points[k].clone(), failed: false }
+            Worst {
+                value: rows[k][t.metric],
+                witness: points[k].clone(),
+                failed: false,
+            }
         })
         .collect::<Vec<_>>();
     let violations = rows.iter().filter(|r| !limits.meets(r)).count();

@@ -30,23 +30,41 @@ pub struct SearchSettings {
 
 impl Default for SearchSettings {
     fn default() -> SearchSettings {
-        SearchSettings { grid: 5, starts: 3, tolerance: 1e-3, min_step: 1.0 / 4096.0, max_polls: 60 }
+        SearchSettings {
+            grid: 5,
+            starts: 3,
+            tolerance: 1e-3,
+            min_step: 1.0 / 4096.0,
+            max_polls: 60,
+        }
     }
 }
 
 impl SearchSettings {
     pub(crate) fn check(&self) -> Result<(), DesignError> {
         if self.grid < 2 {
-            return Err(config("search.grid", self.grid, "at least 2 points per range"));
+            return Err(config(
+                "search.grid",
+                self.grid,
+                "at least 2 points per range",
+            ));
         }
         if self.starts < 1 {
             return Err(config("search.starts", self.starts, "at least 1"));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(config("search.tolerance", self.tolerance, "a number in (0, 1)"));
+            return Err(config(
+                "search.tolerance",
+                self.tolerance,
+                "a number in (0, 1)",
+            ));
         }
         if !(self.min_step > 0.0 && self.min_step < 1.0) {
-            return Err(config("search.min_step", self.min_step, "a number in (0, 1)"));
+            return Err(config(
+                "search.min_step",
+                self.min_step,
+                "a number in (0, 1)",
+            ));
         }
         if self.max_polls < 1 {
             return Err(config("search.max_polls", self.max_polls, "at least 1"));
@@ -92,11 +110,20 @@ impl WorstCaseSearch {
             return Err(config("limit", "[]", "at least one metric to search"));
         }
         if let Some(t) = targets.iter().find(|t| t.metric >= metrics) {
-            return Err(config("target.metric", t.metric, format!("below {metrics}")));
+            return Err(config(
+                "target.metric",
+                t.metric,
+                format!("below {metrics}"),
+            ));
         }
         let continuous = for_all.axes().iter().map(|a| a.is_continuous()).collect();
         Ok(WorstCaseSearch {
-            shared: Shared { for_all, targets, settings, continuous },
+            shared: Shared {
+                for_all,
+                targets,
+                settings,
+                continuous,
+            },
             metrics,
             designs: Vec::new(),
             asked: Vec::new(),
@@ -125,7 +152,10 @@ impl WorstCaseSearch {
             let s = &self.shared;
             for (id, (design, search)) in self.designs.iter_mut().enumerate() {
                 for c in search.wanted(s) {
-                    self.batch.push(Run { design: design.clone(), for_all: s.for_all.real(&c) });
+                    self.batch.push(Run {
+                        design: design.clone(),
+                        for_all: s.for_all.real(&c),
+                    });
                     self.asked.push((id, c));
                 }
             }
@@ -160,7 +190,9 @@ impl WorstCaseSearch {
     /// The worst cases at design point `id`, once its search has finished (after an `ask` that
     /// handed out none of its runs).
     pub fn result(&self, id: usize) -> Option<WorstCases> {
-        self.designs.get(id).and_then(|(_, s)| s.result(&self.shared))
+        self.designs
+            .get(id)
+            .and_then(|(_, s)| s.result(&self.shared))
     }
 
     /// Runs made for all design points.
