@@ -3,6 +3,7 @@
 //! grid and needs each grid point's neighbours along the ranges; verification runs a fine one.
 
 use crate::axes::Axes;
+use crate::error::{config, DesignError};
 
 /// The points of a grid, in normalised coordinates, and how they neighbour.
 pub(crate) struct Grid {
@@ -18,6 +19,34 @@ impl Grid {
         Grid {
             along: axes.axes().iter().map(|a| a.grid(n)).collect(),
             continuous: axes.axes().iter().map(|a| a.is_continuous()).collect(),
+        }
+    }
+
+    /// Points of the grid of `n` per range over `axes`; `None` beyond `usize`.
+    pub(crate) fn count(axes: &Axes, n: usize) -> Option<usize> {
+        axes.axes()
+            .iter()
+            .try_fold(1usize, |k, a| k.checked_mul(a.grid(n).len().max(1)))
+    }
+
+    /// An error unless the grid has at most `cap` points: the grid is built in memory, and
+    /// a few list axes of many values multiply quickly.
+    pub(crate) fn check_size(
+        axes: &Axes,
+        n: usize,
+        key: &str,
+        cap: usize,
+    ) -> Result<(), DesignError> {
+        match Grid::count(axes, n) {
+            Some(k) if k <= cap => Ok(()),
+            k => Err(config(
+                key,
+                n,
+                format!(
+                    "a grid of at most {cap} points ({} here)",
+                    k.map_or("more than usize".to_string(), |k| k.to_string())
+                ),
+            )),
         }
     }
 

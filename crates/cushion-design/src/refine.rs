@@ -13,6 +13,7 @@ use std::collections::HashMap;
 use crate::axes::{Axes, Point};
 use crate::cells::{Cell, Lattice, Node};
 use crate::error::{config, DesignError};
+use crate::grid::Grid;
 use crate::limits::{Limits, Sense};
 use crate::metrics::Worst;
 use crate::worst_case::{Run, SearchSettings, WorstCaseSearch};
@@ -116,6 +117,9 @@ impl Refinement {
             return Err(config("search.initial_cells", m, "1 to 65536"));
         }
         let m = (m.next_power_of_two() as u32).min(n);
+        // The starting corners, each a design point to search: a guard against list axes
+        // whose values multiply past what memory holds.
+        Grid::check_size(&design, m as usize + 1, "search.initial_cells", 1_000_000)?;
         let search = WorstCaseSearch::new(
             for_all,
             limits.targets().to_vec(),
@@ -288,6 +292,14 @@ impl Refinement {
 
     pub fn limits(&self) -> &Limits {
         &self.limits
+    }
+
+    pub fn design_axes(&self) -> &Axes {
+        &self.design
+    }
+
+    pub fn for_all(&self) -> &Axes {
+        self.search.for_all()
     }
 
     /// The cells of the refined map, in real units.

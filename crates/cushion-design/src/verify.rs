@@ -7,11 +7,15 @@ use crate::grid::Grid;
 use crate::limits::Limits;
 use crate::metrics::{failed, Worst};
 
+/// The most runs a verification grid may have.
+const MAX_VERIFY: usize = 10_000_000;
+
 /// The `for_all` points of the verification grid, in real units (first axis slowest).
 pub fn verify_grid(for_all: &Axes, n: usize) -> Result<Vec<Point>, DesignError> {
     if n < 2 {
         return Err(config("search.verify", n, "at least 2 points per range"));
     }
+    Grid::check_size(for_all, n, "search.verify", MAX_VERIFY)?;
     Ok(Grid::new(for_all, n)
         .points()
         .iter()

@@ -10,8 +10,12 @@
 use crate::axes::{Axes, Point};
 use crate::climb::Coord;
 use crate::error::{config, DesignError};
+use crate::grid::Grid;
 use crate::metrics::{Target, Worst};
 use crate::point_search::{PointSearch, Shared};
+
+/// The most points a coarse grid may have (one design point's grid is run in one batch).
+const MAX_GRID: usize = 1_000_000;
 
 /// How hard the worst case is searched for.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,6 +120,7 @@ impl WorstCaseSearch {
                 format!("below {metrics}"),
             ));
         }
+        Grid::check_size(&for_all, settings.grid, "search.grid", MAX_GRID)?;
         let continuous = for_all.axes().iter().map(|a| a.is_continuous()).collect();
         Ok(WorstCaseSearch {
             shared: Shared {

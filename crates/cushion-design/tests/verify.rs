@@ -23,6 +23,10 @@ fn the_grid_has_n_points_per_range_and_every_list_value() {
     // The dead time is spread evenly in its logarithm: the middle of 41 points is 0.01.
     assert!((points[20 * 2][1] - 0.01).abs() < 1e-15, "{:?}", points[40]);
     assert!(verify_grid(&for_all(), 1).is_err());
+    assert!(
+        verify_grid(&for_all(), 10_000).is_err(),
+        "2 x 10^8 runs: refused"
+    );
 }
 
 #[test]

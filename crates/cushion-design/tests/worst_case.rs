@@ -297,6 +297,22 @@ fn the_protocol_and_bad_settings_are_refused() {
         SearchSettings::default()
     )
     .is_err());
+    // Four list axes of 100 values: a coarse grid of 10^8 points is refused, not allocated.
+    let lists = Axes::new(
+        "for_all",
+        (0..4)
+            .map(|i| Axis::values(&format!("k{i}"), 100))
+            .collect(),
+    )
+    .unwrap();
+    let e = WorstCaseSearch::new(lists, targets.clone(), 1, SearchSettings::default())
+        .err()
+        .unwrap();
+    assert!(
+        e.to_string()
+            .starts_with("search.grid = 5: a grid of at most"),
+        "{e}"
+    );
     let mut s = WorstCaseSearch::new(box_xy(), targets, 1, SearchSettings::default()).unwrap();
     s.add(vec![]);
     let batch = s.ask();
