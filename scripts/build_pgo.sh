@@ -4,7 +4,7 @@
 # scan, the observers) from the branch and call counts of real runs: a run takes 10-13 % less
 # time (docs/performance.md, "The profile-guided build"). The numbers are the same to the bit:
 # PGO moves code and chooses what to inline, never which floating-point operations run
-# (scripts/pgo/same_numbers.sh compares the two builds; the test command runs it).
+# (scripts/pgo/same_numbers.sh compares the two builds; scripts/check_pgo.sh runs both).
 #
 #   bash scripts/build_pgo.sh            # -> target/pgo/release/cushion
 #   bash scripts/build_pgo.sh --wheel    # also the Python package, built into .venv/

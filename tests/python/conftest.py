@@ -21,7 +21,7 @@ def _find_cli() -> Path:
     env = os.environ.get("CUSHION_BIN")
     if env:
         return Path(env)
-    for profile in ("release", "debug"):
+    for profile in ("release", "ci", "debug"):
         p = ROOT / "target" / profile / "cushion"
         if p.exists():
             return p

@@ -6,6 +6,7 @@
 //! streams that pyarrow turns into pandas frames. The pure-Python layer (`python/cushion/`)
 //! builds the user-facing objects (`Run`, DataFrames, plots, Dask).
 
+mod command;
 mod convert;
 mod errors;
 mod mcap_read;
@@ -34,6 +35,7 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sweep::sweep_runs, m)?)?;
     m.add_function(wrap_pyfunction!(mcap_read::read_mcap, m)?)?;
     m.add_function(wrap_pyfunction!(mcap_read::recorded_runs, m)?)?;
+    m.add_function(wrap_pyfunction!(command::main, m)?)?;
     m.add_function(wrap_pyfunction!(errors::_panic_guard_check, m)?)?;
     Ok(())
 }

@@ -18,7 +18,7 @@ Exit status: 0 run ended ok; 1 run ended with another status (summary still prin
 message in it) or an output could not be written; 2 bad input (one message naming the key, the \
 value and what is allowed; no output file written).")]
 pub struct SimulateArgs {
-    /// Scene file (TOML, keys of SPEC section 7). Without it the default scene runs.
+    /// Scene file (TOML; its keys are listed in docs/scene-keys.md). Without it the default scene runs.
     #[arg(value_name = "SCENE.toml")]
     pub scene: Option<PathBuf>,
 
@@ -27,7 +27,7 @@ pub struct SimulateArgs {
     #[arg(long = "set", value_name = "KEY=VALUE")]
     pub set: Vec<String>,
 
-    /// Print the summary as one JSON object (SPEC section 7 names) and nothing else on stdout.
+    /// Print the summary as one JSON object (the fields of docs/model.md) and nothing else on stdout.
     #[arg(long)]
     pub json: bool,
 

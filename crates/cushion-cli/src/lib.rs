@@ -1,0 +1,84 @@
+//! The `cushion` command line: clap subcommands over `cushion-model` and `cushion-sweep`, run by
+//! the `cushion` binary and by the Python package's console script (`cushion`, `python -m
+//! cushion`) through [`run_from`], so both parse and answer alike.
+//!
+//! Exit status: 0 success, 2 bad input (a message naming the key, value and what is allowed),
+//! 1 anything else (I/O; for `simulate`, also a run that ended with a status other than `ok`,
+//! whose summary is still printed). Each subcommand returns its status; nothing here exits the
+//! process (but the sweep's abrupt-stop test hook, which stands for a kill).
+
+mod completions;
+mod merge;
+mod simulate;
+mod sweep;
+
+use std::ffi::OsString;
+use std::io::Write;
+
+use clap::{Parser, Subcommand};
+
+/// Run the command with these arguments (the first is the program's name, as in `argv`) and
+/// return its exit status. Help, `--version` and usage errors are printed as clap prints them,
+/// with clap's statuses (0, and 2 for a usage error).
+pub fn run_from<I, T>(args: I) -> i32
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let code = match Cli::try_parse_from(args) {
+        Ok(cli) => run(cli),
+        Err(e) => {
+            let _ = e.print();
+            e.exit_code()
+        }
+    };
+    // Inside the Python extension no Rust `main` flushes standard output on the way out.
+    let _ = std::io::stdout().flush();
+    code
+}
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "cushion",
+    version = env!("CUSHION_VERSION_LINE"),
+    about = "Robot end-effector collisions with small objects, and the modules that soften them"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Run one scene and print its summary.
+    Simulate(simulate::SimulateArgs),
+    /// Run a sweep file in parallel.
+    Sweep(sweep::SweepArgs),
+    /// Join sweep shards into one summary.
+    Merge(merge::MergeArgs),
+    /// Print a shell completion script (e.g. `cushion completions bash > ~/.local/share/bash-completion/completions/cushion`).
+    Completions(completions::CompletionsArgs),
+}
+
+pub fn run(cli: Cli) -> i32 {
+    match cli.command {
+        Command::Simulate(a) => simulate::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::Merge(a) => merge::run(a),
+        Command::Completions(a) => completions::run(a),
+    }
+}
+
+/// The git commit of the working folder, when there is one (for `provenance.json`).
+pub fn git_commit() -> Option<String> {
+    let out = std::process::Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .stderr(std::process::Stdio::null())
+        .output()
+        .ok()?;
+    if !out.status.success() {
+        return None;
+    }
+    let s = String::from_utf8(out.stdout).ok()?.trim().to_string();
+    (!s.is_empty()).then_some(s)
+}
