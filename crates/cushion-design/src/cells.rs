@@ -23,6 +23,9 @@ pub(crate) struct Lattice {
     pub(crate) n: u32,
     /// Per design axis: whether it is a range.
     pub(crate) continuous: Vec<bool>,
+    /// The size of a starting cell (at least 1): design points are filed by the starting cell
+    /// they lie in, so a cell finds the points in it among few.
+    pub(crate) bucket: u32,
 }
 
 impl Lattice {
@@ -129,6 +132,25 @@ impl Lattice {
         })
     }
 
+    /// The bucket a lattice point is filed in: its starting cell, counted along each range (a
+    /// point on an upper face goes to the next one).
+    pub(crate) fn bucket_of(&self, p: &[u32]) -> Node {
+        p.iter()
+            .zip(&self.continuous)
+            .map(|(&i, &c)| if c { i / self.bucket } else { i })
+            .collect()
+    }
+
+    /// The buckets that may hold points of a cell's closed box: its own starting cell's and the
+    /// next along each subset of the ranges (for the points on its upper faces).
+    pub(crate) fn buckets_near(&self, c: &Cell) -> Vec<Node> {
+        let base = Cell {
+            low: self.bucket_of(&c.low),
+            size: 1,
+        };
+        self.corners(&base)
+    }
+
     /// The multilinear interpolation at position `x` of values given at the cell's corners
     /// (in [`Lattice::corners`] order).
     pub(crate) fn interpolate(&self, c: &Cell, x: &[f64], at_corners: &[f64]) -> f64 {
@@ -176,6 +198,7 @@ mod tests {
         let l = Lattice {
             n: 8,
             continuous: vec![true, false, true],
+            bucket: 4,
         };
         let cells = l.initial(&axes, 2);
         assert_eq!(cells.len(), 8);
@@ -199,5 +222,10 @@ mod tests {
         // Bilinear: corner values 0, 1, 2, 3 are x/4 + 2 y/4.
         let v = l.interpolate(c, &[1.0, 0.0, 3.0], &[0.0, 1.0, 2.0, 3.0]);
         assert!((v - (0.25 + 1.5)).abs() < 1e-15);
+        // A child of the last cell files its points in that cell's bucket and the next ones.
+        let child = &l.children(&cells[5])[3];
+        assert_eq!(l.bucket_of(&child.low), vec![1, 0, 1]);
+        assert_eq!(l.buckets_near(child).len(), 4);
+        assert_eq!(l.bucket_of(&[8, 0, 8]), vec![2, 0, 2]);
     }
 }

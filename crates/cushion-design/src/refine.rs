@@ -75,6 +75,8 @@ pub struct Refinement {
     /// Lattice point of each design point, by its id in the search.
     nodes: Vec<Node>,
     ids: HashMap<Node, usize>,
+    /// Design point ids by bucket (see [`Lattice::bucket_of`]).
+    buckets: HashMap<Node, Vec<usize>>,
     /// The judged design points: ids `0..judged.len()`.
     judged: Vec<DesignPoint>,
     cells: Vec<Cell>,
@@ -126,7 +128,11 @@ impl Refinement {
             limits.metrics().len(),
             settings.search,
         )?;
-        let lattice = Lattice { n, continuous };
+        let lattice = Lattice {
+            n,
+            continuous,
+            bucket: (n / m).max(1),
+        };
         let cells = lattice.initial(&design, m);
         let mut r = Refinement {
             design,
@@ -136,6 +142,7 @@ impl Refinement {
             search,
             nodes: Vec::new(),
             ids: HashMap::new(),
+            buckets: HashMap::new(),
             judged: Vec::new(),
             cells: Vec::new(),
             done: false,
@@ -153,6 +160,10 @@ impl Refinement {
                 let real = self.design.real(&self.lattice.coordinates(&node));
                 let id = self.search.add(real);
                 self.ids.insert(node.clone(), id);
+                self.buckets
+                    .entry(self.lattice.bucket_of(&node))
+                    .or_default()
+                    .push(id);
                 self.nodes.push(node);
             }
         }
@@ -226,10 +237,13 @@ impl Refinement {
             return true;
         }
         let mut inside = self
-            .judged
-            .iter()
-            .zip(&self.nodes)
-            .filter(|(_, n)| self.lattice.holds(cell, n));
+            .lattice
+            .buckets_near(cell)
+            .into_iter()
+            .filter_map(|b| self.buckets.get(&b))
+            .flatten()
+            .filter(|&&id| self.lattice.holds(cell, &self.nodes[id]))
+            .filter_map(|&id| self.judged.get(id).map(|p| (p, id)));
         let Some((first, _)) = inside.next() else {
             return false;
         };

@@ -293,3 +293,20 @@ fn bad_questions_are_refused() {
     ));
     assert!(map.classify(&[1.0]).unwrap());
 }
+
+#[test]
+fn lists_only_are_taken_value_by_value() {
+    // Three modules, four conditions: worst case module + 3, limit 4.
+    let design = Axes::new("design", vec![Axis::values("module", 3)]).unwrap();
+    let for_all = Axes::new("for_all", vec![Axis::values("k", 4)]).unwrap();
+    let limits = Limits::new(vec![Limit::max("force", 4.0)], None).unwrap();
+    let mut map = Refinement::new(design, for_all, limits, RefineSettings::default()).unwrap();
+    let (runs, batches) = drive_refinement(&mut map, &|d, p| vec![d[0] + p[0]], Order::InOrder);
+    assert_eq!((runs, batches), (12, 1), "every pair once, in one batch");
+    let feasible: Vec<bool> = (0..3).map(|m| map.classify(&[m as f64]).unwrap()).collect();
+    assert_eq!(feasible, [true, true, false]);
+    assert_eq!(map.points()[1].margin, 0.0);
+    assert_eq!(map.points()[2].worst[0].witness, vec![3.0]);
+    assert_eq!(map.best().unwrap().design, vec![0.0]);
+    assert!(map.classify(&[0.5]).is_err(), "not a value's index");
+}
