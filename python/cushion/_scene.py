@@ -18,7 +18,7 @@ def defaults(module: str = "hydraulic") -> dict[str, Any]:
 
 def keys() -> pd.DataFrame:
     """Every scene key: columns ``key``, ``default`` (the hydraulic scene's), ``unit`` and
-    ``description``, in the order of the model's specification."""
+    ``description``, in the order of docs/scene-keys.md."""
     rows = _cushion.keys()
     frame = pd.DataFrame(rows, columns=["key", "default", "unit", "description"])
     frame["default"] = frame["default"].astype(object)
@@ -27,5 +27,6 @@ def keys() -> pd.DataFrame:
 
 def load_scene(path: str | os.PathLike[str]) -> dict[str, Any]:
     """Read a scene file (TOML) into ``{"section.key": value}``, every key, the file's values
-    over the defaults. Unknown keys and wrong types raise :class:`cushion.ConfigError`."""
+    over the defaults. A file that cannot be read raises :class:`FileNotFoundError` (or another
+    :class:`OSError`); invalid TOML, unknown keys and wrong types :class:`cushion.ConfigError`."""
     return _cushion.load_scene(os.fspath(path))

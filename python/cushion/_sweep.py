@@ -71,7 +71,8 @@ def sweep(
         The columns and values of ``summary.parquet``: ``run``, one column per axis, then the
         summary fields (``status``, ``peak_robot_force``, ..., ``stats_steps``, ...).
 
-    Bad input raises :class:`cushion.ConfigError` before any run. Ctrl-C stops the sweep
+    A sweep file that cannot be read raises :class:`FileNotFoundError` (or another
+    :class:`OSError`); bad input :class:`cushion.ConfigError`, before any run. Ctrl-C stops the sweep
     within one chunk (``KeyboardInterrupt``); with ``out``, ``resume=True`` continues it. The
     GIL is released while the engine runs.
     """

@@ -210,9 +210,12 @@ def sweep_frame(
 
     Raises
     ------
+    FileNotFoundError
+        ``config`` names a sweep file that does not exist (or another :class:`OSError` for one
+        that cannot be read), before anything is submitted.
     cushion.ConfigError
-        Bad config (unknown key, empty axis, missing scene file, ...) or a bad argument, before
-        anything is submitted.
+        Bad config (unknown key, empty axis, missing scene file named in it, ...) or a bad
+        argument, before anything is submitted.
 
     Notes
     -----
@@ -249,6 +252,9 @@ def sweep(
 
     Raises
     ------
+    FileNotFoundError
+        ``config`` names a sweep file that does not exist (another :class:`OSError` for one that
+        cannot be read), before anything is submitted.
     cushion.ConfigError
         Bad config, before anything is submitted.
     Exception

@@ -195,7 +195,7 @@ def check_bad_input_raises(client, tmp_path):
         cdask.sweep(bad_axis, client=client)
     with pytest.raises(cushion.ConfigError, match=r"robot\.dead_tim"):
         cdask.sweep_frame(bad_axis)
-    with pytest.raises(cushion.ConfigError, match="nope.toml"):
+    with pytest.raises(FileNotFoundError, match="nope.toml"):
         cdask.sweep(tmp_path / "nope.toml", client=client)
     with pytest.raises(cushion.ConfigError, match="config"):
         cdask.sweep(42, client=client)

@@ -57,7 +57,7 @@ def test_bad_shorthands_and_arguments_name_what_to_fix():
 
 def test_bad_scenes(cli, tmp_path):
     missing = tmp_path / "nope.toml"
-    with pytest.raises(cushion.ConfigError, match="nope.toml"):
+    with pytest.raises(FileNotFoundError, match="nope.toml"):
         cushion.simulate(missing)
     with pytest.raises(cushion.ConfigError, match="scene"):
         cushion.simulate(42)
@@ -72,7 +72,7 @@ def test_bad_scenes(cli, tmp_path):
     assert str(e.value) == cli_message(cli, bad)
     with pytest.raises(cushion.ConfigError, match="module"):
         cushion.defaults("pneumatic")
-    with pytest.raises(cushion.ConfigError, match="nope.toml"):
+    with pytest.raises(FileNotFoundError, match="nope.toml"):
         cushion.load_scene(missing)
 
 
@@ -86,7 +86,6 @@ def test_bad_sweeps_raise_before_anything_is_written(tmp_path):
         ({"axis": [{"key": "robot.dead_time", "linspace": [0.0, 0.1]}]}, "linspace"),
         ({"scene": "no-such-scene.toml", "axis": [good_axis]}, "no-such-scene.toml"),
         ({"set": {"tool.mass": "x"}, "axis": [good_axis]}, "tool.mass"),
-        (str(tmp_path / "missing.toml"), "missing.toml"),
         (3.5, "config"),
     ]:
         with pytest.raises(cushion.ConfigError, match=needle.replace(".", r"\.")):

@@ -5,11 +5,11 @@ use cushion_sweep::mcap_read::{read_run, recorded_runs as runs_in, ReadError};
 use pyo3::exceptions::PyOSError;
 use pyo3::prelude::*;
 
-use crate::errors::config_error;
+use crate::errors::{config_error, read_file};
 use crate::simulate::{columns, events, Events};
 
 fn read(path: &str) -> PyResult<Vec<u8>> {
-    std::fs::read(path).map_err(|e| PyOSError::new_err(format!("{path}: {e}")))
+    read_file(std::path::Path::new(path))
 }
 
 fn mcap_error(path: &str, e: ReadError) -> PyErr {

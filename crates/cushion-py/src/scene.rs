@@ -9,12 +9,13 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyString, PyTuple};
 
 use crate::convert::{from_toml, to_table, to_toml};
-use crate::errors::config_error;
+use crate::errors::{config_error, read_file};
 
 /// A scene read and checked once, to run many times: ``cushion.Scene(scene=None, set=None)``
 /// takes what :func:`cushion.simulate` takes (a scene file, a dict of scene keys, or None for
 /// the defaults; overrides ``{"section.key": value}`` after it) and raises
-/// :class:`cushion.ConfigError` for bad input at once. Pass it to :func:`cushion.simulate` in
+/// :class:`cushion.ConfigError` for bad input at once (:class:`FileNotFoundError`, or another
+/// :class:`OSError`, for a scene file that cannot be read). Pass it to :func:`cushion.simulate` in
 /// place of the file or dict: a run then starts from a copy of it.
 //
 // (Reading the paper's scene file and parsing its TOML costs about 18 µs, a fifth of its run
@@ -79,7 +80,9 @@ pub fn scene_from(scene: Option<&Bound<'_, PyAny>>) -> PyResult<Scene> {
         return scene_from(Some(&p));
     }
     if let Ok(p) = s.cast::<PyString>() {
-        return Scene::from_file(Path::new(p.to_str()?)).map_err(config_error);
+        let path = Path::new(p.to_str()?);
+        read_file(path)?;
+        return Scene::from_file(path).map_err(config_error);
     }
     if let Ok(d) = s.cast::<PyDict>() {
         let table = to_table("", d)?;
@@ -136,7 +139,7 @@ pub fn defaults<'py>(py: Python<'py>, module: &str) -> PyResult<Bound<'py, PyDic
     flat(py, &scene)
 }
 
-/// Every key as `(key, default, unit, description)`, in SPEC order.
+/// Every key as `(key, default, unit, description)`, in the order of docs/scene-keys.md (`Scene::keys()`).
 #[pyfunction]
 pub fn keys<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
     let scene = Scene::default();
@@ -159,6 +162,7 @@ pub fn keys<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
 /// A scene file read and parsed (not validated) as `{"section.key": value}`, every key.
 #[pyfunction]
 pub fn load_scene<'py>(py: Python<'py>, path: &str) -> PyResult<Bound<'py, PyDict>> {
+    read_file(Path::new(path))?;
     let scene = Scene::from_file(Path::new(path)).map_err(config_error)?;
     flat(py, &scene)
 }

@@ -17,7 +17,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyString};
 
 use crate::convert::to_table;
-use crate::errors::{config_error, guarded, sweep_error};
+use crate::errors::{config_error, guarded, read_file, sweep_error};
 
 /// How often the waiting thread reports progress and looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);
@@ -25,7 +25,9 @@ const POLL: Duration = Duration::from_millis(100);
 /// The sweep a user gave: a path to a sweep file, or a dict of the same shape.
 fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
     if let Ok(p) = config.cast::<PyString>() {
-        return SweepFile::from_file(Path::new(p.to_str()?)).map_err(config_error);
+        let path = Path::new(p.to_str()?);
+        read_file(path)?;
+        return SweepFile::from_file(path).map_err(config_error);
     }
     if let Ok(d) = config.cast::<PyDict>() {
         let mut table = to_table("", d)?;
