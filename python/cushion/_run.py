@@ -155,10 +155,11 @@ def simulate(
         Overrides ``{"section.key": value}`` applied after ``scene``, in order (the keys of
         ``cushion simulate --set``; :func:`cushion.keys` lists them).
     rtol, atol, method
-        Shorthands for ``solver.rtol``, ``solver.atol`` and ``solver.method`` (``"dp5"``,
-        the default; ``"rodas"``, an implicit method for stiff scenes; ``"auto"``, dp5 while
-        the scene is not stiff and rodas while it is, e.g. a compressible liquid;
-        ``"rk4"``, ``"euler"``).
+        Shorthands for ``solver.rtol``, ``solver.atol`` and ``solver.method``: ``"auto"``, the
+        default (``"dp5"`` while the scene is not stiff, ``"rodas"`` while it is, e.g. a
+        compressible liquid); ``"dp5"``, adaptive Dormand-Prince 5(4); ``"dop853"``,
+        Dormand-Prince 8(5,3), for tight tolerances; ``"rodas"``, an implicit method for stiff
+        scenes; ``"rk4"``, ``"euler"``, fixed step ``solver.fixed_step``.
     trajectory
         Record the trajectory (``False`` is faster when only the summary is wanted).
     sample_interval
@@ -169,7 +170,15 @@ def simulate(
     -------
     Run
         Its ``status`` is ``"ok"`` or says how the run failed; a numerical failure is not an
-        exception. Bad input raises :class:`cushion.ConfigError` naming the key.
+        exception.
+
+    Raises
+    ------
+    FileNotFoundError, PermissionError, IsADirectoryError
+        ``scene`` names a file that cannot be read (an :class:`OSError`, as ``open`` raises).
+    cushion.ConfigError
+        Bad input: a file that is not a valid scene, an unknown key, a wrong type or value; the
+        message names the key, the value and what is allowed.
     """
     summary, data, events = _cushion.simulate(
         _scene_arg(scene),
@@ -187,6 +196,10 @@ def read_mcap(path: str | os.PathLike[str], run: int | None = None) -> Run:
     """Read a recorded run back from MCAP: a file of ``cushion simulate --mcap`` (``run=None``)
     or a sweep's ``trajectories.mcap`` (``run`` = the run number; ``None`` when it holds one
     run). The arrays and events equal those :func:`simulate` returned for that run; the
-    summary is ``None`` (MCAP records no summary)."""
+    summary is ``None`` (MCAP records no summary).
+
+    A file that cannot be read raises :class:`FileNotFoundError` (or another :class:`OSError`);
+    a file that is not MCAP an :class:`OSError`; a ``run`` the file does not hold
+    :class:`cushion.ConfigError`."""
     data, events = _cushion.read_mcap(os.fspath(path), run)
     return Run(None, data, events)

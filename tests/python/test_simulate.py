@@ -139,7 +139,7 @@ def test_defaults_keys_and_load_scene():
     d = cushion.defaults()
     # the paper's Table 1 values and the defaults (docs/model.md, "Parameters and defaults")
     assert d["robot.dead_time"] == 0.070 and d["hydraulic.gas_pressure"] == 1000.0
-    assert d["object.mass"] == 0.246 and d["solver.method"] == "dp5"
+    assert d["object.mass"] == 0.246 and d["solver.method"] == "auto"
     assert dict(zip(keys.key, keys.default)) == d
     assert keys.set_index("key").loc["robot.dead_time", "unit"] == "s"
     assert keys.set_index("key").loc["hydraulic.gas_pressure", "unit"] == "Pa"

@@ -1,11 +1,12 @@
-//! Scene files: the keys of SPEC section 7, their defaults, units and checks.
+//! Scene files: the keys of `docs/scene-keys.md`, their defaults, units and checks.
 //!
 //! A scene file is TOML. Top-level keys are `module` and `t_end`; every other key lives in a
 //! section (`[robot]`, `[tool]`, `[object]`, `[stops]`, `[hydraulic]`, `[bistable]`,
 //! `[solver]`, `[energy]`) and is addressed as `section.name` everywhere (`--set`, sweep axes,
 //! Python keyword overrides). All values are SI; no unit is ever part of a key.
 //!
-//! Extensions beyond SPEC section 7 (all optional, with defaults that reproduce the SPEC):
+//! Extensions beyond the paper's model (all optional, with defaults that leave that model as it
+//! is; `docs/scene-keys.md`):
 //! `object.enabled`, `energy.ledger`, `solver.max_steps`, `solver.fixed_step`,
 //! `solver.stiffness`, `solver.early_end`, `solver.ringing_tail`, `hydraulic.cavitation`,
 //! `hydraulic.cavitation_pressure`, `hydraulic.bulk_modulus`, `hydraulic.chamber_volume`,
@@ -108,7 +109,7 @@ impl ConfigError {
     }
 }
 
-/// `[robot]`: the prescribed flange motion (SPEC section 1).
+/// `[robot]`: the prescribed flange motion (`docs/model.md`, section "Robot").
 #[derive(Clone, Debug, PartialEq)]
 pub struct Robot {
     /// `robot.approach_speed`: `v_max`, flange speed before the impact, m/s (> 0).
@@ -165,7 +166,7 @@ pub struct Stops {
     pub damping: f64,
 }
 
-/// `[hydraulic]`: the hydraulic module (SPEC section 2).
+/// `[hydraulic]`: the hydraulic module (`docs/model.md`, section "Hydraulic module").
 #[derive(Clone, Debug, PartialEq)]
 pub struct Hydraulic {
     /// `hydraulic.piston_radius`: `R_p`, main cylinder radius, m (> 0).
@@ -188,7 +189,8 @@ pub struct Hydraulic {
     /// `hydraulic.cavitation_pressure`: `p_cav`, Pa (in the frame of `p10`; < `gas_pressure`).
     pub cavitation_pressure: f64,
     /// `hydraulic.bulk_modulus`: `beta`, liquid bulk modulus, Pa (>= 0). 0: the lumped,
-    /// incompressible model of SPEC section 2; > 0: the richer model of SPEC section 6, with the
+    /// incompressible model (`docs/model.md`, "Hydraulic module"); > 0: the richer model
+    /// ("Compressible liquid"), with the
     /// main chamber pressure `p_m` and the volume moved through the orifice as states (stiff;
     /// about 1.5e9 for oil). Extension.
     pub bulk_modulus: f64,
@@ -212,7 +214,7 @@ pub struct Hydraulic {
 /// `s = 0`.
 pub const DEAD_VOLUME: f64 = 1.11e-5;
 
-/// `[bistable]`: the von Mises snap-through element (SPEC section 4).
+/// `[bistable]`: the von Mises snap-through element (`docs/model.md`, section "Bistable module").
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bistable {
     /// `bistable.spring_stiffness`: `k_b`, stiffness of each of the two springs, N/m (> 0).
@@ -228,7 +230,8 @@ pub struct Bistable {
 /// `[solver]`: integrator settings.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Solver {
-    /// `solver.method`: `"dp5"` (adaptive), `"rk4"` or `"euler"` (fixed step).
+    /// `solver.method`: `"auto"` (the default: DOPRI5 while the scene is not stiff, Rodas while
+    /// it is), `"dp5"`, `"dop853"`, `"rodas"` (adaptive), `"rk4"` or `"euler"` (fixed step).
     pub method: Method,
     /// `solver.rtol`: relative tolerance, - (in (10 eps, 1), eps = 2.2e-16).
     pub rtol: f64,
@@ -254,7 +257,7 @@ pub struct Energy {
     pub ledger: bool,
 }
 
-/// A scene: every key of SPEC section 7 with its default.
+/// A scene: every key of `docs/scene-keys.md` with its default.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// `module`: `"hydraulic"`, `"bistable"` or `"rigid"`.
@@ -324,7 +327,7 @@ impl Default for Scene {
                 offset: 0.001,
             },
             solver: Solver {
-                method: Method::Dp5,
+                method: Method::Auto,
                 rtol: 1e-6,
                 atol: 1e-9,
                 max_steps: 1_000_000,

@@ -27,7 +27,7 @@ fn auto_is_dopri5_to_the_bit_on_every_paper_scene() {
         "paper-bistable-dt10",
         "paper-rigid",
     ] {
-        let dp5 = run(&paper(name, &[]));
+        let dp5 = run(&paper(name, &[("solver.method", "dp5")]));
         let auto = run(&paper(name, &[("solver.method", "auto")]));
         assert_eq!(auto, dp5, "{name}");
         assert_eq!(auto.stats.method_switches, 0);
@@ -51,9 +51,13 @@ fn a_small_orifice_that_overdamps_the_tool_switches_to_rodas_and_saves_work() {
         all.extend_from_slice(extra);
         run(&paper("paper-hydraulic-dt70", &all))
     };
-    let dp5 = with(&[]);
+    let dp5 = with(&[("solver.method", "dp5")]);
     let auto = with(&[("solver.method", "auto")]);
-    let reference = with(&[("solver.rtol", "1e-11"), ("solver.atol", "1e-14")]);
+    let reference = with(&[
+        ("solver.method", "dp5"),
+        ("solver.rtol", "1e-11"),
+        ("solver.atol", "1e-14"),
+    ]);
     println!(
         "dp5 {:?}\nauto {:?}\nerrors: dp5 {:.2e}, auto {:.2e}",
         dp5.stats,
@@ -92,9 +96,10 @@ fn steel_stops_and_a_steel_contact_are_solved_with_no_more_work_than_dopri5() {
             all.extend_from_slice(extra);
             paper("paper-hydraulic-dt70", &all)
         };
-        let dp5 = run(&scene(&[]));
+        let dp5 = run(&scene(&[("solver.method", "dp5")]));
         let auto = run(&scene(&[("solver.method", "auto")]));
         let reference = run(&scene(&[
+            ("solver.method", "dp5"),
             ("solver.rtol", "1e-10"),
             ("solver.atol", "1e-13"),
         ]));

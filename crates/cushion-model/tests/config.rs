@@ -4,7 +4,7 @@
 use cushion_model::{simulate, ConfigError, Module, RunOptions, RunStatus, Scene};
 
 #[test]
-fn defaults_are_the_spec_values() {
+fn defaults_are_the_documented_values() {
     let s = Scene::default();
     let expect: &[(&str, toml::Value)] = &[
         ("module", "hydraulic".into()),
@@ -37,7 +37,7 @@ fn defaults_are_the_spec_values() {
         ("bistable.half_span", 0.030.into()),
         ("bistable.apex_rise", 0.0125.into()),
         ("bistable.offset", 0.001.into()),
-        ("solver.method", "dp5".into()),
+        ("solver.method", "auto".into()),
         ("solver.rtol", 1e-6.into()),
         ("solver.atol", 1e-9.into()),
     ];

@@ -48,10 +48,12 @@ fn solver_failures_are_statuses_with_messages() {
     assert_eq!(r.summary.status, RunStatus::MaxSteps);
     assert!(r.summary.message.contains("10"), "{}", r.summary.message);
     // the tool resting on its Hertzian stop makes large explicit steps stiff: "stop" ends there
-    // (integrated to t_end: an early end would take over at once)
+    // (integrated to t_end: an early end would take over at once). Under dp5: auto, the
+    // default, would switch to Rodas there instead.
     let s = with(
         Scene::default(),
         &[
+            ("solver.method", "dp5"),
             ("object.enabled", "false"),
             ("solver.stiffness", "stop"),
             ("solver.early_end", "false"),

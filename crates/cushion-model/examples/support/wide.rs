@@ -211,6 +211,9 @@ pub fn draw(u: &mut Uniform, corners: Corners) -> Scene {
     b.half_span = u.between(0.015, 0.05);
     b.apex_rise = u.between(0.005, 0.02);
     b.offset = b.apex_rise * u.between(0.0, 0.5);
+    // The draw's own method is dp5 (not the engine's default, auto): `--method` runs it
+    // under another, and the stiffness-stop corner needs an explicit method to stop.
+    s.set_from_str("solver.method", "dp5").expect("a method");
     s.solver.rtol = u.log_between(1e-9, 1e-3);
     s.solver.atol = s.solver.rtol * 1e-3;
     s.energy.ledger = u.next() < 0.8;

@@ -121,7 +121,7 @@ scene_keys! {
     "bistable.offset" => bistable.offset, "m",
         "e: distance from the element's first stable point to the forward stop, which preloads the tool onto that stop, in [0, h)";
     "solver.method" => solver.method, "",
-        "integration method: \"dp5\" (adaptive Dormand-Prince 5(4)), \"dop853\" (adaptive Dormand-Prince 8(5,3), Hairer's DOP853, for tight tolerances), \"rodas\" (adaptive implicit Rosenbrock Rodas4 with the model's exact Jacobian, for stiff scenes), \"auto\" (dp5 while the scene is not stiff, rodas while it is), \"rk4\" or \"euler\" (fixed step solver.fixed_step)";
+        "integration method: \"auto\" (dp5 while the scene is not stiff, rodas while it is; dp5's steps to the bit on a scene that is never stiff), \"dp5\" (adaptive Dormand-Prince 5(4)), \"dop853\" (adaptive Dormand-Prince 8(5,3), Hairer's DOP853, for tight tolerances), \"rodas\" (adaptive implicit Rosenbrock Rodas4 with the model's exact Jacobian, for stiff scenes), \"rk4\" or \"euler\" (fixed step solver.fixed_step)";
     "solver.rtol" => solver.rtol, "-",
         "relative tolerance of the adaptive method, in (2.2e-15, 1)";
     "solver.atol" => solver.atol, "",
