@@ -542,3 +542,25 @@ fn free_tool_without_object() {
     }
     assert_eq!(n, rows.len());
 }
+
+#[test]
+fn the_default_method_finishes_the_compressible_liquid() {
+    // oil's bulk modulus makes the liquid stiff: dp5 alone ends at its million-step limit;
+    // the default, auto, switches to Rodas and ends ok in a few thousand evaluations
+    let v = json(&["--set", "hydraulic.bulk_modulus=1.5e9"]);
+    assert_eq!(v["status"], "ok");
+    assert!(v["stats"]["method_switches"].as_u64().unwrap() >= 1);
+    assert!(v["stats"]["rhs_evals"].as_u64().unwrap() < 20_000, "{}", v["stats"]);
+    let o = cushion(&[
+        "--set",
+        "hydraulic.bulk_modulus=1.5e9",
+        "--set",
+        "solver.method=dp5",
+        "--set",
+        "solver.max_steps=20000",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let dp5: Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(dp5["status"], "max_steps");
+}

@@ -207,3 +207,14 @@ def test_auto_solves_the_compressible_liquid_and_logs_its_switch(cli_json):
     # the lumped model's peak force is within 2e-4 of the compressible one's (docs/model.md)
     lumped = cushion.simulate(scene, trajectory=False)
     assert abs(run.summary["peak_robot_force"] / lumped.summary["peak_robot_force"] - 1) < 2e-4
+
+
+def test_the_default_method_finishes_the_compressible_liquid():
+    run = cushion.simulate(set={"hydraulic.bulk_modulus": 1.5e9}, trajectory=False)
+    assert run.summary["status"] == "ok"
+    assert run.summary["stats"]["method_switches"] >= 1
+    # dp5 alone is held at its stability limit there
+    dp5 = cushion.simulate(
+        set={"hydraulic.bulk_modulus": 1.5e9, "solver.max_steps": 20000}, method="dp5", trajectory=False
+    )
+    assert dp5.summary["status"] == "max_steps"
