@@ -256,6 +256,45 @@ pub fn compute_with(
     Ok(batches)
 }
 
+/// Compute a list of scenes, in parallel on `pool`, for a caller that chooses its runs one batch
+/// at a time (design questions): the summaries come back in the list's order, so they do not
+/// depend on the thread count. As in a sweep, each scene is checked first (one the model rejects,
+/// or a panic in the model, is a summary with status `invalid`), the cancel flag is looked at
+/// between runs ([`SweepError::Cancelled`]: the batch is dropped whole), and `hooks.progress`
+/// hears `count` after each run.
+pub fn compute_scenes(
+    scenes: &[Scene],
+    pool: &rayon::ThreadPool,
+    sim: &Model,
+    hooks: &Hooks,
+    count: &RunCount,
+) -> Result<Vec<Summary>, SweepError> {
+    let ropts = RunOptions::default();
+    let summaries: Vec<Option<Summary>> = pool.install(|| {
+        scenes
+            .par_iter()
+            .map(|scene| {
+                if hooks.cancelled() {
+                    return None;
+                }
+                let result = match scene.validate() {
+                    Ok(()) => run_guarded(sim, scene, &ropts),
+                    Err(e) => invalid(e.to_string()),
+                };
+                let d = count.done.fetch_add(1, Ordering::Relaxed) + 1;
+                if let Some(p) = hooks.progress {
+                    p(d, count.total);
+                }
+                Some(result.summary)
+            })
+            .collect()
+    });
+    summaries
+        .into_iter()
+        .collect::<Option<Vec<Summary>>>()
+        .ok_or(SweepError::Cancelled)
+}
+
 fn invalid(message: String) -> RunResult {
     RunResult {
         summary: Summary::invalid(message),

@@ -41,7 +41,7 @@ pub mod provenance;
 pub mod report;
 pub mod runner;
 
-pub use engine::{compute, Hooks, Plan};
+pub use engine::{compute, compute_scenes, Hooks, Plan};
 pub use error::SweepError;
 pub use runner::{run_sweep, SweepOptions, SweepOutcome};
 pub use runs::Runs;
