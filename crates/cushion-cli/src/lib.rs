@@ -8,6 +8,7 @@
 //! process (but the sweep's abrupt-stop test hook, which stands for a kill).
 
 mod completions;
+mod design;
 mod merge;
 mod simulate;
 mod sweep;
@@ -56,6 +57,9 @@ pub enum Command {
     Sweep(sweep::SweepArgs),
     /// Join sweep shards into one summary.
     Merge(merge::MergeArgs),
+    /// Answer a design question: the designs whose searched worst case over the for_all box
+    /// meets every limit, the best one, verified.
+    Design(design::DesignArgs),
     /// Print a shell completion script (e.g. `cushion completions bash > ~/.local/share/bash-completion/completions/cushion`).
     Completions(completions::CompletionsArgs),
 }
@@ -65,6 +69,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::Simulate(a) => simulate::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => merge::run(a),
+        Command::Design(a) => design::run(a),
         Command::Completions(a) => completions::run(a),
     }
 }

@@ -83,11 +83,20 @@
 //! and [`check`] judges the runs of the chosen design there: whether every run meets every
 //! limit, and the worst case found on that grid.
 //!
+//! # Answered by the model
+//!
+//! Above the core, and the only modules that know the model and the sweep engine:
+//! `design_file` (the TOML design file, checked: [`DesignFile`]), `engine_runs` (every batch of
+//! the refinement, then the verification grid, run through the sweep crate's parallel engine:
+//! [`compute_design`] gives a [`DesignResult`] in memory), `tables` (the design points as an
+//! Arrow record batch, `answer.json`), `design_map` (`design-map.svg`) and `output` (the output
+//! folder: [`run_design`] computes and writes it).
+//!
 //! # Modules, each using only those before it
 //! `error`; `axes` (the boxes), `grid`, `metrics` (targets and worst cases), `limits` (limits,
 //! objective, judgement); `climb` (one compass search), `point_search` (one design point),
 //! `worst_case` (many, batched); `cells` (the design lattice), `refine` (the design map);
-//! `verify`.
+//! `verify`; then `design_file`, `engine_runs`, `tables`, `design_map`, `output`.
 
 pub mod axes;
 mod cells;
@@ -101,10 +110,20 @@ pub mod refine;
 pub mod verify;
 pub mod worst_case;
 
+pub mod design_file;
+pub mod design_map;
+pub mod engine_runs;
+pub mod output;
+pub mod tables;
+
 pub use axes::{Axes, Axis, AxisKind, Point, Scale};
+pub use design_file::{DesignFile, SearchOptions};
+pub use engine_runs::{compute_design, compute_design_with, DesignResult};
 pub use error::DesignError;
 pub use limits::{Judgement, Limit, Limits, Objective, Sense};
 pub use metrics::{Direction, Target, Worst};
+pub use output::{run_design, run_design_with, DesignOptions, DesignOutcome};
 pub use refine::{CellBounds, DesignPoint, RefineSettings, Refinement};
+pub use tables::{answer_json, design_table};
 pub use verify::{check, verify_grid, Verification};
 pub use worst_case::{Run, SearchSettings, WorstCaseSearch, WorstCases};
