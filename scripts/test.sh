@@ -4,7 +4,7 @@
 #      integration and end-to-end tests (the `cushion` command run as a user runs it);
 #   2. the Python package: a virtual environment in .venv/, the wheel built by maturin and
 #      installed with its test dependencies (numpy, pandas, pyarrow, matplotlib,
-#      dask[distributed], pytest, mcap, nbformat), then pytest on tests/python/.
+#      dask[distributed], pytest, mcap, nbformat, mypy for the stubs), then pytest on tests/python/
 # Both use one build, the `ci` profile of Cargo.toml (optimised, no link-time optimisation): the
 # wheel reuses the crates the Rust tests compiled. The profile-guided build's bit-equality with
 # the plain build is checked by scripts/check_pgo.sh; benchmarks are not run here

@@ -1,25 +1,42 @@
 # Type stubs of the compiled module cushion._cushion (crates/cushion-py). Users call the
 # wrappers in cushion/__init__.py; these are the raw functions under them.
 import os
-from typing import Any, Callable
+from typing import Any, Callable, final
 
 import numpy as np
 import numpy.typing as npt
 
 __version__: str
+__all__ = [
+    "ConfigError",
+    "__version__",
+    "Scene",
+    "defaults",
+    "keys",
+    "load_scene",
+    "simulate",
+    "sweep",
+    "resolve_sweep",
+    "sweep_runs",
+    "read_mcap",
+    "recorded_runs",
+    "main",
+    "_panic_guard_check",
+]
 
 class ConfigError(ValueError):
     """Bad input: the message names the key, the value and what is allowed."""
 
 # the trajectory: an (11, n) array, one row per column t, x_r, v_r, x_t, v_t, x_p, v_p, s, p1, F_c, F_r
-Columns = npt.NDArray[np.float64]
+_Columns = npt.NDArray[np.float64]
 # the event log: times, names, and the state at each event as an (n, 11) array
-Events = tuple[npt.NDArray[np.float64], list[str], npt.NDArray[np.float64]]
+_Events = tuple[npt.NDArray[np.float64], list[str], npt.NDArray[np.float64]]
 
+@final
 class Scene:
     """A scene read and checked once, to run many times (see cushion.simulate)."""
 
-    def __init__(self, scene: str | os.PathLike[str] | dict[str, Any] | None = None, set: dict[str, Any] | None = None) -> None: ...
+    def __new__(cls, scene: str | os.PathLike[str] | dict[str, Any] | None = None, set: dict[str, Any] | None = None) -> Scene: ...
     def to_dict(self) -> dict[str, Any]: ...
     def __reduce__(self) -> tuple[type[Scene], tuple[dict[str, Any]]]: ...
 
@@ -34,7 +51,7 @@ def simulate(
     method: str | None = None,
     trajectory: bool = True,
     sample_interval: float | None = None,
-) -> tuple[dict[str, Any], Columns | None, Events]: ...
+) -> tuple[dict[str, Any], _Columns | None, _Events]: ...
 def sweep(
     config: str | dict[str, Any],
     threads: int | None = None,
@@ -51,7 +68,7 @@ def resolve_sweep(config: str | dict[str, Any]) -> tuple[str, int]:
 def sweep_runs(text: str, start: int, stop: int, threads: int | None = None) -> bytes:
     """Runs start..stop of a resolved sweep, as an Arrow IPC stream."""
 
-def read_mcap(path: str, run: int | None = None) -> tuple[Columns, Events]: ...
+def read_mcap(path: str, run: int | None = None) -> tuple[_Columns, _Events]: ...
 def recorded_runs(path: str) -> list[int]: ...
 def main(argv: list[str]) -> int:
     """Run the ``cushion`` command line with ``argv`` (program name first); its exit status."""
