@@ -12,7 +12,9 @@ as in scene files, ``cushion simulate --set`` and sweep axes; :func:`keys` lists
 >>> frame = cushion.sweep("sweeps/paper.toml")    # one row per run
 
 Bad input raises :class:`ConfigError` (a :class:`ValueError`) naming the key, the value and
-what is allowed. A run that fails numerically is not an exception: its ``status`` says so.
+what is allowed; a file that cannot be read, Python's own :class:`FileNotFoundError` (or another
+:class:`OSError`). A run that fails numerically is not an exception: its ``status`` says so.
+The ``cushion`` command line comes with the package (``cushion --help``, ``python -m cushion``).
 """
 
 from ._cushion import ConfigError, Scene, __version__

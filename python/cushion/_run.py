@@ -70,7 +70,9 @@ class Run:
 
     @property
     def stats(self) -> dict[str, Any] | None:
-        """Solver statistics: ``steps``, ``rejected``, ``rhs_evals``, ``events``, ``stiff``."""
+        """Solver statistics: ``steps``, ``rejected``, ``rhs_evals``, ``events``, ``stiff``,
+        ``jacobians``, ``lu_decompositions`` and ``method_switches`` (the implicit method's work
+        under ``rodas`` and ``auto``)."""
         return None if self.summary is None else self.summary["stats"]
 
     def __getattr__(self, name: str) -> np.ndarray:
