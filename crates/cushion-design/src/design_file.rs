@@ -183,8 +183,8 @@ impl DesignFile {
         }
         let head = SweepFile::from_str_at(&to_text(&head)?, path)?;
 
-        let design = axes(&doc, "design", &head)?;
-        let for_all = axes(&doc, "for_all", &head)?;
+        let design = axes(&doc, "design", &head, &[])?;
+        let for_all = axes(&doc, "for_all", &head, &design)?;
         if design.is_empty() {
             return Err(
                 "[[design]]: none given; give 1 to 4 design axes (key with range or values)".into(),
@@ -198,15 +198,6 @@ impl DesignFile {
         }
         if for_all.is_empty() {
             return Err("[[for_all]]: none given; give at least one condition (key with range or values) the design must survive".into());
-        }
-        for (i, a) in for_all.iter().enumerate() {
-            if design.iter().any(|d| d.key == a.key) {
-                return Err(format!(
-                    "[[for_all]] #{} (`{}`): the key is also a [[design]] axis; a key is chosen or survived, keep it in one",
-                    i + 1,
-                    a.key
-                ));
-            }
         }
 
         let limits = limits(&doc)?;
@@ -293,8 +284,14 @@ fn to_text(t: &toml::Table) -> Result<String, String> {
 }
 
 /// `[[design]]` or `[[for_all]]`: each axis checked by the sweep parser (key, values), then
-/// against `[set]`, then each of its values set on the base scene.
-fn axes(doc: &toml::Table, what: &str, head: &SweepFile) -> Result<Vec<SweepAxis>, String> {
+/// against `[set]` and the design axes (for `for_all`), then each of its values set on the
+/// base scene.
+fn axes(
+    doc: &toml::Table,
+    what: &str,
+    head: &SweepFile,
+    design: &[SweepAxis],
+) -> Result<Vec<SweepAxis>, String> {
     let mut out: Vec<SweepAxis> = Vec::new();
     for (i, t) in tables(doc, what)?.into_iter().enumerate() {
         let key = t.get("key").and_then(Value::as_str).unwrap_or("?");
@@ -339,6 +336,11 @@ fn axes(doc: &toml::Table, what: &str, head: &SweepFile) -> Result<Vec<SweepAxis
         if out.iter().any(|a| a.key == axis.key) {
             return Err(format!(
                 "{label}: the key has another [[{what}]] axis already"
+            ));
+        }
+        if design.iter().any(|d| d.key == axis.key) {
+            return Err(format!(
+                "{label}: the key is also a [[design]] axis; a key is chosen or survived, keep it in one"
             ));
         }
         if head.set.iter().any(|(k, _)| k == &axis.key) {
