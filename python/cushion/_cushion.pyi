@@ -7,9 +7,12 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+# the trajectory's columns, in the order of its rows: t, x_r, v_r, x_t, v_t, x_p, v_p, s, p1, F_c, F_r
+COLUMNS: tuple[str, ...]
 __all__ = [
     "ConfigError",
     "__version__",
+    "COLUMNS",
     "Scene",
     "defaults",
     "keys",

@@ -11,8 +11,9 @@ import pandas as pd
 from . import _cushion
 from ._args import path_or_dict
 
-#: Trajectory columns, in the order of ``--csv`` (SI units: s, m, m/s, Pa, N).
-COLUMNS = ("t", "x_r", "v_r", "x_t", "v_t", "x_p", "v_p", "s", "p1", "F_c", "F_r")
+#: Trajectory columns, in the order of ``--csv`` (SI units: s, m, m/s, Pa, N), as the engine
+#: names them for every output (one list, in the compiled module).
+COLUMNS: tuple[str, ...] = _cushion.COLUMNS
 
 _INDEX = {c: i for i, c in enumerate(COLUMNS)}
 _EMPTY = np.empty(0)

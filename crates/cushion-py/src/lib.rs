@@ -25,6 +25,11 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
     std::panic::set_hook(Box::new(|_| {}));
     m.add("ConfigError", py.get_type::<errors::ConfigError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The trajectory's column names, the one list the package and the command's CSV share.
+    m.add(
+        "COLUMNS",
+        pyo3::types::PyTuple::new(py, cushion_model::TrajectoryPoint::COLUMNS)?,
+    )?;
     m.add_class::<scene::PreparedScene>()?;
     m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;
     m.add_function(wrap_pyfunction!(scene::keys, m)?)?;

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .._run import COLUMNS
+from .._cushion import COLUMNS
 from ._units import _BRAKE, _DETECT, _save, label
 
 
