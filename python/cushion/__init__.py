@@ -10,6 +10,7 @@ as in scene files, ``cushion simulate --set`` and sweep axes; :func:`keys` lists
 >>> run = cushion.simulate(set={"module": "bistable", "robot.dead_time": 0.01})
 >>> run.summary["object_final_velocity"]          # m/s
 >>> frame = cushion.sweep("sweeps/paper.toml")    # one row per run
+>>> answer = cushion.design("sweeps/design-question.toml")   # which design is safe?
 
 Bad input raises :class:`ConfigError` (a :class:`ValueError`) naming the key, the value and
 what is allowed; a file that cannot be read, Python's own :class:`FileNotFoundError` (or another
@@ -18,16 +19,19 @@ The ``cushion`` command line comes with the package (``cushion --help``, ``pytho
 """
 
 from ._cushion import ConfigError, Scene, __version__
+from ._design import Design, design
 from ._run import Run, read_mcap, simulate
 from ._scene import defaults, keys, load_scene
 from ._sweep import sweep
 
 __all__ = [
     "ConfigError",
+    "Design",
     "Run",
     "Scene",
     "__version__",
     "defaults",
+    "design",
     "keys",
     "load_scene",
     "read_mcap",

@@ -14,11 +14,13 @@ __all__ = [
     "__version__",
     "COLUMNS",
     "Scene",
+    "DesignAnswer",
     "defaults",
     "keys",
     "load_scene",
     "simulate",
     "sweep",
+    "design",
     "resolve_sweep",
     "sweep_runs",
     "read_mcap",
@@ -65,6 +67,29 @@ def sweep(
 ) -> bytes:
     """The summary rows as an Arrow IPC stream."""
 
+@final
+class DesignAnswer:
+    """An answered design question (cushion.Design wraps it)."""
+
+    @property
+    def design_keys(self) -> list[str]: ...
+    @property
+    def out_dir(self) -> str | None: ...
+    def points(self) -> bytes:
+        """One row per design point (design.parquet's columns), as an Arrow IPC stream."""
+    def runs(self) -> bytes:
+        """Every run made (runs.parquet's columns), as an Arrow IPC stream."""
+    def answer(self) -> str:
+        """The text of answer.json."""
+    def map_margin(self, points: list[list[Any]]) -> list[float]: ...
+
+def design(
+    config: str | dict[str, Any],
+    threads: int | None = None,
+    out: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    git_commit: str | None = None,
+) -> DesignAnswer: ...
 def resolve_sweep(config: str | dict[str, Any]) -> tuple[str, int]:
     """The sweep as self-contained TOML text, and its run count."""
 

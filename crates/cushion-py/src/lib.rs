@@ -8,6 +8,7 @@
 
 mod command;
 mod convert;
+mod design;
 mod errors;
 mod mcap_read;
 mod scene;
@@ -31,11 +32,13 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
         pyo3::types::PyTuple::new(py, cushion_model::TrajectoryPoint::COLUMNS)?,
     )?;
     m.add_class::<scene::PreparedScene>()?;
+    m.add_class::<design::DesignAnswer>()?;
     m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;
     m.add_function(wrap_pyfunction!(scene::keys, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(design::design, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::resolve_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_runs, m)?)?;
     m.add_function(wrap_pyfunction!(mcap_read::read_mcap, m)?)?;

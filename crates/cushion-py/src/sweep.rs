@@ -49,7 +49,7 @@ fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
 /// Run `work` on another thread with the GIL released. Meanwhile, at most every [`POLL`], call
 /// `progress(done, total)` and look for a pending signal; on one (Ctrl-C), raise `cancel` and
 /// re-raise the signal's exception once `work` has stopped.
-fn run_detached<T: Send>(
+pub(crate) fn run_detached<T: Send>(
     py: Python<'_>,
     cancel: &AtomicBool,
     counts: &(AtomicU64, AtomicU64),
@@ -108,7 +108,7 @@ fn run_detached<T: Send>(
 }
 
 /// Record batches as one Arrow IPC stream.
-fn ipc_bytes<'py>(
+pub(crate) fn ipc_bytes<'py>(
     py: Python<'py>,
     batches: &[RecordBatch],
     plan_schema: arrow_schema::SchemaRef,

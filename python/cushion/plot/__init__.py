@@ -10,6 +10,8 @@
 >>> cushion.plot.metric_vs_axis(frame, "object_final_velocity", "robot.dead_time", by="module")
 >>> cushion.plot.heatmap(frame, "peak_robot_force", "hydraulic.gas_pressure",
 ...                      "hydraulic.orifice_radius")
+>>> answer = cushion.design("sweeps/design-question.toml")
+>>> cushion.plot.design_map(answer, path="design-map.png")   # the feasible region
 
 Every function returns the :class:`matplotlib.figure.Figure` it drew on and writes it to
 ``path`` when given (the format follows the file's extension: ``.png``, ``.svg``, ``.pdf``).
@@ -46,6 +48,7 @@ _choose_backend()
 _choose_backend()
 
 from ._runs import compare, marks, run  # noqa: E402  (after the backend is settled)
+from ._design import design_map  # noqa: E402
 from ._sweeps import heatmap, metric_vs_axis  # noqa: E402
 from ._units import AXES, METRICS, MODULE_COLORS, Quantity, label, quantity  # noqa: E402
 
@@ -61,4 +64,5 @@ __all__ = [
     "compare",
     "metric_vs_axis",
     "heatmap",
+    "design_map",
 ]
