@@ -64,12 +64,16 @@ struct Sig(f64);
 impl std::fmt::Display for Sig {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let x = self.0;
-        if x == 0.0 || (1e-3..1e4).contains(&x.abs()) {
-            let s = format!(
-                "{:.*}",
-                (2 - x.abs().log10().floor() as i32).max(0) as usize,
-                x
-            );
+        if x == 0.0 {
+            write!(f, "0")
+        } else if (1e-3..1e4).contains(&x.abs()) {
+            let digits = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+            let s = format!("{x:.digits$}");
+            let s = if s.contains('.') {
+                s.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                &s
+            };
             write!(f, "{s}")
         } else {
             write!(f, "{x:.2e}")
@@ -168,6 +172,8 @@ fn two_axes(path: &Path, r: &DesignResult, ix: usize, iy: usize) -> Draw {
     chart
         .configure_mesh()
         .disable_mesh()
+        .label_style(("sans-serif", 16))
+        .axis_desc_style(("sans-serif", 18))
         .x_desc(axes[ix].key.as_str())
         .y_desc(axes[iy].key.as_str())
         .x_label_formatter(&fx)
@@ -316,6 +322,8 @@ fn one_axis(path: &Path, r: &DesignResult, ix: usize) -> Draw {
         let fx = |c: &f64| label(r, ix, *c);
         chart
             .configure_mesh()
+            .label_style(("sans-serif", 16))
+            .axis_desc_style(("sans-serif", 18))
             .x_desc(axes[ix].key.as_str())
             .y_desc(format!("worst {what} ({})", names[*t]))
             .x_label_formatter(&fx)
