@@ -1,0 +1,391 @@
+//! SALib's Sobol estimators (`SALib.analyze.sobol.analyze`, SALib 1.6) with their bootstrap
+//! intervals, over many output columns at once. The formulas are in the crate's doc.
+
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+use crate::error::{config, SensitivityError};
+use crate::normal;
+use crate::saltelli::block_len;
+
+/// How to analyse: the layout the outputs were sampled in, and the bootstrap.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SobolOptions {
+    /// The outputs hold the `BA_j` rows (`2D + 2` rows per base point, else `D + 2`), and `S2`
+    /// is estimated for every pair.
+    pub second_order: bool,
+    /// Bootstrap resamples of the base points (at least 2; SALib's default is 100).
+    pub resamples: usize,
+    /// The confidence level of the intervals, in `(0, 1)`.
+    pub conf_level: f64,
+    /// Seeds the resamples: the same outputs and seed give the same intervals.
+    pub seed: u64,
+}
+
+impl Default for SobolOptions {
+    fn default() -> Self {
+        SobolOptions {
+            second_order: true,
+            resamples: 100,
+            conf_level: 0.95,
+            seed: 0,
+        }
+    }
+}
+
+/// An index and the half-width of its confidence interval (`value ± conf`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    pub value: f64,
+    pub conf: f64,
+}
+
+/// A second-order index of the inputs `j < k`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PairEstimate {
+    pub j: usize,
+    pub k: usize,
+    pub value: f64,
+    pub conf: f64,
+}
+
+/// The indices of one output that varies over the sample.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SobolIndices {
+    /// The output's mean and variance (`ddof = 0`) over every row of the sample, in its units.
+    pub mean: f64,
+    pub variance: f64,
+    /// First-order index of each input.
+    pub s1: Vec<Estimate>,
+    /// Total index of each input.
+    pub st: Vec<Estimate>,
+    /// Second-order index of each pair `j < k`, in the order `(0,1), (0,2) .. (0,D-1), (1,2)
+    /// ..`; empty without second order.
+    pub s2: Vec<PairEstimate>,
+}
+
+/// What the analysis says of one output.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Sensitivity {
+    /// The output takes one value on every row: there is no variance to apportion (SALib would
+    /// divide by zero and report NaN).
+    Constant { value: f64 },
+    /// The output varies: its indices.
+    Indices(SobolIndices),
+}
+
+impl Sensitivity {
+    /// The indices, unless the output is constant.
+    pub fn indices(&self) -> Option<&SobolIndices> {
+        match self {
+            Sensitivity::Constant { .. } => None,
+            Sensitivity::Indices(s) => Some(s),
+        }
+    }
+}
+
+/// SALib's threshold for a zero range or variance (`np.finfo(float).eps`).
+const EPS: f64 = f64::EPSILON;
+
+/// One output column, normalised as SALib does and checked.
+struct Column {
+    /// `(y - mean) / std` over all rows.
+    y: Vec<f64>,
+    mean: f64,
+    variance: f64,
+    /// The normalised `A` and `B` rows span no more than `EPS`: SALib returns 0 for every index
+    /// and every interval.
+    flat_ab: bool,
+}
+
+/// The shape shared by every column.
+#[derive(Clone, Copy)]
+struct Layout {
+    d: usize,
+    block: usize,
+    n: usize,
+    second_order: bool,
+}
+
+impl Layout {
+    fn n_pairs(&self) -> usize {
+        if self.second_order {
+            self.d * (self.d - 1) / 2
+        } else {
+            0
+        }
+    }
+
+    /// Estimates per resample: `S1` of each input, `ST` of each input, `S2` of each pair.
+    fn n_estimates(&self) -> usize {
+        2 * self.d + self.n_pairs()
+    }
+}
+
+/// Sobol indices of every column of `outputs`, each a model output over a Saltelli sample of
+/// `n_inputs` inputs in SALib's row order (see [`crate::SaltelliSample`]): `S1`, `ST` and with
+/// `options.second_order` `S2`, each with its bootstrap interval, or [`Sensitivity::Constant`].
+/// One result per column, in order.
+///
+/// Parallel over columns and resamples on the current rayon pool; the result does not depend on
+/// the number of threads (every resample draws from its own seeded stream, and nothing is summed
+/// across threads). Every column is resampled with the same base points, as SALib would with one
+/// seed.
+///
+/// Errors: `n_inputs` 0; `resamples < 2`; `conf_level` outside `(0, 1)`; a column whose length
+/// is not a positive multiple of the block (`2D + 2` or `D + 2`) or differs from the first's; a
+/// value not finite (the error names the column and the row).
+pub fn analyze(
+    n_inputs: usize,
+    outputs: &[&[f64]],
+    options: &SobolOptions,
+) -> Result<Vec<Sensitivity>, SensitivityError> {
+    if n_inputs == 0 {
+        return Err(config("inputs", n_inputs, "must be at least 1"));
+    }
+    if options.resamples < 2 {
+        return Err(config(
+            "resamples",
+            options.resamples,
+            "must be at least 2 (the interval is their standard deviation)",
+        ));
+    }
+    if !(options.conf_level > 0.0 && options.conf_level < 1.0) {
+        return Err(config(
+            "conf_level",
+            options.conf_level,
+            "must lie strictly between 0 and 1",
+        ));
+    }
+    let block = block_len(n_inputs, options.second_order);
+    let Some(first) = outputs.first() else {
+        return Ok(Vec::new());
+    };
+    let rows = first.len();
+    for (o, y) in outputs.iter().enumerate() {
+        if y.is_empty() || y.len() % block != 0 {
+            return Err(SensitivityError::Output {
+                output: o,
+                problem: format!(
+                    "{} values: a Saltelli sample of {n_inputs} inputs {} second order has a positive multiple of {block} rows",
+                    y.len(),
+                    if options.second_order { "with" } else { "without" },
+                ),
+            });
+        }
+        if y.len() != rows {
+            return Err(SensitivityError::Output {
+                output: o,
+                problem: format!("{} values, output 0 has {rows}", y.len()),
+            });
+        }
+    }
+    let layout = Layout {
+        d: n_inputs,
+        block,
+        n: rows / block,
+        second_order: options.second_order,
+    };
+
+    let columns: Vec<Option<Column>> = outputs
+        .par_iter()
+        .enumerate()
+        .map(|(o, y)| prepare(o, y, &layout))
+        .collect::<Result<_, _>>()?;
+
+    // Point estimates on the sample itself.
+    let identity: Vec<u32> = (0..layout.n as u32).collect();
+    let points: Vec<Option<Vec<f64>>> = columns
+        .par_iter()
+        .map(|c| c.as_ref().map(|c| column_estimates(c, &layout, &identity)))
+        .collect();
+
+    // Bootstrap: resample b draws n base points with replacement from its own stream.
+    let n_boot_columns = columns.iter().flatten().filter(|c| !c.flat_ab).count();
+    let boot: Vec<Vec<Vec<f64>>> = if n_boot_columns == 0 {
+        Vec::new()
+    } else {
+        (0..options.resamples)
+            .into_par_iter()
+            .map_init(
+                || vec![0u32; layout.n],
+                |draw, b| {
+                    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+                    rng.set_stream(b as u64);
+                    for i in draw.iter_mut() {
+                        *i = rng.random_range(0..layout.n as u32);
+                    }
+                    columns
+                        .iter()
+                        .flatten()
+                        .filter(|c| !c.flat_ab)
+                        .map(|c| column_estimates(c, &layout, draw))
+                        .collect()
+                },
+            )
+            .collect()
+    };
+
+    let z = normal::quantile(0.5 + options.conf_level / 2.0);
+    let mut boot_column = 0;
+    let mut results = Vec::with_capacity(columns.len());
+    for (o, (column, point)) in columns.iter().zip(points).enumerate() {
+        let (Some(column), Some(point)) = (column, point) else {
+            results.push(Sensitivity::Constant {
+                value: outputs[o][0],
+            });
+            continue;
+        };
+        let conf: Vec<f64> = if column.flat_ab {
+            vec![0.0; layout.n_estimates()]
+        } else {
+            let c = boot_column;
+            boot_column += 1;
+            (0..layout.n_estimates())
+                .map(|e| z * std_ddof1(boot.iter().map(|r| r[c][e])))
+                .collect()
+        };
+        let d = layout.d;
+        let est = |e: usize| Estimate {
+            value: point[e],
+            conf: conf[e],
+        };
+        let mut s2 = Vec::with_capacity(layout.n_pairs());
+        if layout.second_order {
+            let mut e = 2 * d;
+            for j in 0..d {
+                for k in j + 1..d {
+                    s2.push(PairEstimate {
+                        j,
+                        k,
+                        value: point[e],
+                        conf: conf[e],
+                    });
+                    e += 1;
+                }
+            }
+        }
+        results.push(Sensitivity::Indices(SobolIndices {
+            mean: column.mean,
+            variance: column.variance,
+            s1: (0..d).map(est).collect(),
+            st: (d..2 * d).map(est).collect(),
+            s2,
+        }));
+    }
+    Ok(results)
+}
+
+/// Checks a column and normalises it as SALib does, `Y = (Y - Y.mean()) / Y.std()`; `None`
+/// for a constant column.
+fn prepare(o: usize, y: &[f64], layout: &Layout) -> Result<Option<Column>, SensitivityError> {
+    if let Some((row, v)) = y.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(SensitivityError::Output {
+            output: o,
+            problem: format!("row {row} is {v}: the estimators need finite values"),
+        });
+    }
+    if y.iter().all(|v| *v == y[0]) {
+        return Ok(None);
+    }
+    // Compensated sums, so the centring is as exact as NumPy's (which S1 and S2, unlike ST,
+    // depend on).
+    let mean = neumaier(y.iter().copied()) / y.len() as f64;
+    let variance = neumaier(y.iter().map(|v| (v - mean) * (v - mean))) / y.len() as f64;
+    let sd = variance.sqrt();
+    let normalised: Vec<f64> = y.iter().map(|v| (v - mean) / sd).collect();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for blk in normalised.chunks_exact(layout.block) {
+        for v in [blk[0], blk[layout.block - 1]] {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    Ok(Some(Column {
+        y: normalised,
+        mean,
+        variance,
+        flat_ab: hi - lo <= EPS,
+    }))
+}
+
+/// `S1_j`, `ST_j` and `S2_jk` (see [`Layout::n_estimates`]) from the base points `draw` of a
+/// normalised column (SALib's `first_order`, `total_order` and `second_order`).
+fn column_estimates(column: &Column, layout: &Layout, draw: &[u32]) -> Vec<f64> {
+    let d = layout.d;
+    if column.flat_ab {
+        return vec![0.0; layout.n_estimates()];
+    }
+    let mut sum = 0.0;
+    let mut sum_sq = 0.0;
+    let mut s1 = vec![0.0; d];
+    let mut st = vec![0.0; d];
+    let mut s2 = vec![0.0; layout.n_pairs()];
+    for &i in draw {
+        let blk = &column.y[i as usize * layout.block..(i as usize + 1) * layout.block];
+        let a = blk[0];
+        let b = blk[layout.block - 1];
+        sum += a + b;
+        sum_sq += a * a + b * b;
+        let ab = &blk[1..=d];
+        for j in 0..d {
+            s1[j] += b * (ab[j] - a);
+            st[j] += (a - ab[j]) * (a - ab[j]);
+        }
+        if layout.second_order {
+            let ba = &blk[d + 1..=2 * d];
+            let ab_ = a * b;
+            let mut p = 0;
+            for (j, &ba_j) in ba.iter().enumerate() {
+                for &ab_k in &ab[j + 1..] {
+                    s2[p] += ba_j * ab_k - ab_;
+                    p += 1;
+                }
+            }
+        }
+    }
+    let n = draw.len() as f64;
+    // np.var(np.r_[A, B]): ddof 0 over the 2n values. One pass suffices: the column is
+    // normalised, so its mean is near 0 and its spread near 1.
+    let m = sum / (2.0 * n);
+    let var = sum_sq / (2.0 * n) - m * m;
+    // SALib divides only where the variance exceeds eps, and gives 0 elsewhere.
+    let ratio = |x: f64| if var > EPS { x / n / var } else { 0.0 };
+    let mut out = Vec::with_capacity(layout.n_estimates());
+    out.extend(s1.iter().map(|&x| ratio(x)));
+    out.extend(st.iter().map(|&x| 0.5 * ratio(x)));
+    if layout.second_order {
+        let mut p = 0;
+        for j in 0..d {
+            for k in j + 1..d {
+                out.push(ratio(s2[p]) - out[j] - out[k]);
+                p += 1;
+            }
+        }
+    }
+    out
+}
+
+/// NumPy's `std(ddof=1)`, two passes.
+fn std_ddof1(x: impl Iterator<Item = f64> + Clone) -> f64 {
+    let n = x.clone().count() as f64;
+    let mean = x.clone().sum::<f64>() / n;
+    (x.map(|v| (v - mean) * (v - mean)).sum::<f64>() / (n - 1.0)).sqrt()
+}
+
+/// Neumaier's compensated sum.
+fn neumaier(x: impl Iterator<Item = f64>) -> f64 {
+    let mut sum = 0.0;
+    let mut c = 0.0;
+    for v in x {
+        let t = sum + v;
+        if sum.abs() >= v.abs() {
+            c += (sum - t) + v;
+        } else {
+            c += (v - t) + sum;
+        }
+        sum = t;
+    }
+    sum + c
+}
