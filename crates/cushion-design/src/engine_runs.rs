@@ -238,6 +238,21 @@ impl<'a> Runner<'a> {
 }
 
 impl DesignResult {
+    /// The design points as one record batch: the columns of `design.parquet`.
+    pub fn points_table(&self) -> RecordBatch {
+        crate::tables::design_table(self)
+    }
+
+    /// The Arrow schema of [`DesignResult::runs`] (that of `runs.parquet`).
+    pub fn runs_schema(&self) -> arrow_schema::SchemaRef {
+        TableSchema::new(&runs_axes(&self.file)).arrow
+    }
+
+    /// `answer.json` as a JSON value.
+    pub fn answer(&self) -> serde_json::Value {
+        crate::tables::answer_json(self)
+    }
+
     /// The real point of the search for design values given as the file gives them (one per
     /// `[[design]]` key, in order: a number along a range, one of the listed values along a
     /// list); an error names the key and what is allowed.

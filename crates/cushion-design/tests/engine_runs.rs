@@ -146,6 +146,9 @@ fn the_answer_of_a_known_question() {
             "runs"
         ]
     );
+    assert_eq!(r.points_table(), t);
+    assert_eq!(r.runs[0].schema(), r.runs_schema());
+    assert_eq!(r.answer()["design"]["hydraulic.orifice_radius"], 0.002);
     // Failed runs are in runs.parquet's rows with their status.
     let failed: usize = r
         .runs
