@@ -85,13 +85,17 @@ impl Sensitivity {
     }
 }
 
+/// Resamples drawn together: their counts are applied in one pass over a column's terms.
+const BATCH: usize = 16;
+
 /// SALib's threshold for a zero range or variance (`np.finfo(float).eps`).
 const EPS: f64 = f64::EPSILON;
 
 /// One output column, normalised as SALib does and checked.
 struct Column {
-    /// `(y - mean) / std` over all rows.
-    y: Vec<f64>,
+    /// The terms of each base point (see [`Layout::n_terms`]) of the normalised output, `N`
+    /// rows of `n_terms`.
+    terms: Vec<f64>,
     mean: f64,
     variance: f64,
     /// The normalised `A` and `B` rows span no more than `EPS`: SALib returns 0 for every index
@@ -120,6 +124,13 @@ impl Layout {
     /// Estimates per resample: `S1` of each input, `ST` of each input, `S2` of each pair.
     fn n_estimates(&self) -> usize {
         2 * self.d + self.n_pairs()
+    }
+
+    /// Every estimate is a ratio of means over the base points; the terms of one base point,
+    /// from its normalised outputs `a, b, ab_j, ba_j`: `a + b`, `a² + b²`, `b (ab_j - a)` for
+    /// each `j`, `(a - ab_j)²` for each `j`, `ba_j ab_k - a b` for each pair.
+    fn n_terms(&self) -> usize {
+        2 + self.n_estimates()
     }
 }
 
@@ -194,38 +205,74 @@ pub fn analyze(
         .map(|(o, y)| prepare(o, y, &layout))
         .collect::<Result<_, _>>()?;
 
-    // Point estimates on the sample itself.
-    let identity: Vec<u32> = (0..layout.n as u32).collect();
+    // Point estimates on the sample itself: every base point once.
     let points: Vec<Option<Vec<f64>>> = columns
         .par_iter()
-        .map(|c| c.as_ref().map(|c| column_estimates(c, &layout, &identity)))
+        .map(|c| {
+            c.as_ref().map(|c| {
+                let mut sums = vec![0.0; layout.n_terms()];
+                for q in c.terms.chunks_exact(layout.n_terms()) {
+                    for (s, v) in sums.iter_mut().zip(q) {
+                        *s += v;
+                    }
+                }
+                let mut out = vec![0.0; layout.n_estimates()];
+                if !c.flat_ab {
+                    estimates_from_sums(&sums, layout.n as f64, &layout, &mut out);
+                }
+                out
+            })
+        })
         .collect();
 
-    // Bootstrap: resample b draws n base points with replacement from its own stream.
-    let n_boot_columns = columns.iter().flatten().filter(|c| !c.flat_ab).count();
-    let boot: Vec<Vec<Vec<f64>>> = if n_boot_columns == 0 {
-        Vec::new()
-    } else {
-        (0..options.resamples)
-            .into_par_iter()
-            .map_init(
-                || vec![0u32; layout.n],
-                |draw, b| {
+    // Bootstrap, in batches of resamples: a batch draws its resamples' base points (resample b
+    // from its own stream), then runs through each column's terms once, weighting base point i
+    // by how often each resample drew it. Laid out [resample][column][estimate].
+    let boot_columns: Vec<&Column> = columns.iter().flatten().filter(|c| !c.flat_ab).collect();
+    let per_resample = boot_columns.len() * layout.n_estimates();
+    let mut boot = vec![0.0; options.resamples * per_resample];
+    if per_resample > 0 {
+        boot.par_chunks_mut(BATCH * per_resample)
+            .enumerate()
+            .for_each(|(batch, out)| {
+                let nb = out.len() / per_resample;
+                let n = layout.n;
+                // counts[i * nb + b]: draws of base point i in the batch's resample b.
+                let mut counts = vec![0u32; n * nb];
+                for b in 0..nb {
                     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-                    rng.set_stream(b as u64);
-                    for i in draw.iter_mut() {
-                        *i = rng.random_range(0..layout.n as u32);
+                    rng.set_stream((batch * BATCH + b) as u64);
+                    for _ in 0..n {
+                        counts[rng.random_range(0..n) * nb + b] += 1;
                     }
-                    columns
-                        .iter()
-                        .flatten()
-                        .filter(|c| !c.flat_ab)
-                        .map(|c| column_estimates(c, &layout, draw))
-                        .collect()
-                },
-            )
-            .collect()
-    };
+                }
+                let t = layout.n_terms();
+                let mut sums = vec![0.0; nb * t];
+                for (c, column) in boot_columns.iter().enumerate() {
+                    sums.fill(0.0);
+                    for (q, w) in column.terms.chunks_exact(t).zip(counts.chunks_exact(nb)) {
+                        for (b, &w) in w.iter().enumerate() {
+                            if w == 0 {
+                                continue;
+                            }
+                            let w = w as f64;
+                            for (s, v) in sums[b * t..(b + 1) * t].iter_mut().zip(q) {
+                                *s += w * v;
+                            }
+                        }
+                    }
+                    for b in 0..nb {
+                        let at = b * per_resample + c * layout.n_estimates();
+                        estimates_from_sums(
+                            &sums[b * t..(b + 1) * t],
+                            n as f64,
+                            &layout,
+                            &mut out[at..at + layout.n_estimates()],
+                        );
+                    }
+                }
+            });
+    }
 
     let z = normal::quantile(0.5 + options.conf_level / 2.0);
     let mut boot_column = 0;
@@ -240,10 +287,10 @@ pub fn analyze(
         let conf: Vec<f64> = if column.flat_ab {
             vec![0.0; layout.n_estimates()]
         } else {
-            let c = boot_column;
+            let at = boot_column * layout.n_estimates();
             boot_column += 1;
             (0..layout.n_estimates())
-                .map(|e| z * std_ddof1(boot.iter().map(|r| r[c][e])))
+                .map(|e| z * std_ddof1(boot.iter().skip(at + e).step_by(per_resample).copied()))
                 .collect()
         };
         let d = layout.d;
@@ -294,77 +341,61 @@ fn prepare(o: usize, y: &[f64], layout: &Layout) -> Result<Option<Column>, Sensi
     let mean = neumaier(y.iter().copied()) / y.len() as f64;
     let variance = neumaier(y.iter().map(|v| (v - mean) * (v - mean))) / y.len() as f64;
     let sd = variance.sqrt();
-    let normalised: Vec<f64> = y.iter().map(|v| (v - mean) / sd).collect();
+    let d = layout.d;
+    let mut terms = Vec::with_capacity(layout.n * layout.n_terms());
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for blk in normalised.chunks_exact(layout.block) {
-        for v in [blk[0], blk[layout.block - 1]] {
-            lo = lo.min(v);
-            hi = hi.max(v);
+    let mut blk = vec![0.0; layout.block];
+    for raw in y.chunks_exact(layout.block) {
+        for (x, v) in blk.iter_mut().zip(raw) {
+            *x = (v - mean) / sd;
+        }
+        let a = blk[0];
+        let b = blk[layout.block - 1];
+        lo = lo.min(a).min(b);
+        hi = hi.max(a).max(b);
+        let ab = &blk[1..=d];
+        terms.push(a + b);
+        terms.push(a * a + b * b);
+        terms.extend(ab.iter().map(|x| b * (x - a)));
+        terms.extend(ab.iter().map(|x| (a - x) * (a - x)));
+        if layout.second_order {
+            let ba = &blk[d + 1..=2 * d];
+            for (j, ba_j) in ba.iter().enumerate() {
+                terms.extend(ab[j + 1..].iter().map(|ab_k| ba_j * ab_k - a * b));
+            }
         }
     }
     Ok(Some(Column {
-        y: normalised,
+        terms,
         mean,
         variance,
         flat_ab: hi - lo <= EPS,
     }))
 }
 
-/// `S1_j`, `ST_j` and `S2_jk` (see [`Layout::n_estimates`]) from the base points `draw` of a
-/// normalised column (SALib's `first_order`, `total_order` and `second_order`).
-fn column_estimates(column: &Column, layout: &Layout, draw: &[u32]) -> Vec<f64> {
+/// `S1_j`, `ST_j` and `S2_jk` (see [`Layout::n_estimates`]) from the sums of the terms over
+/// `n` base points (SALib's `first_order`, `total_order` and `second_order`).
+fn estimates_from_sums(sums: &[f64], n: f64, layout: &Layout, out: &mut [f64]) {
     let d = layout.d;
-    if column.flat_ab {
-        return vec![0.0; layout.n_estimates()];
-    }
-    let mut sum = 0.0;
-    let mut sum_sq = 0.0;
-    let mut s1 = vec![0.0; d];
-    let mut st = vec![0.0; d];
-    let mut s2 = vec![0.0; layout.n_pairs()];
-    for &i in draw {
-        let blk = &column.y[i as usize * layout.block..(i as usize + 1) * layout.block];
-        let a = blk[0];
-        let b = blk[layout.block - 1];
-        sum += a + b;
-        sum_sq += a * a + b * b;
-        let ab = &blk[1..=d];
-        for j in 0..d {
-            s1[j] += b * (ab[j] - a);
-            st[j] += (a - ab[j]) * (a - ab[j]);
-        }
-        if layout.second_order {
-            let ba = &blk[d + 1..=2 * d];
-            let ab_ = a * b;
-            let mut p = 0;
-            for (j, &ba_j) in ba.iter().enumerate() {
-                for &ab_k in &ab[j + 1..] {
-                    s2[p] += ba_j * ab_k - ab_;
-                    p += 1;
-                }
-            }
-        }
-    }
-    let n = draw.len() as f64;
-    // np.var(np.r_[A, B]): ddof 0 over the 2n values. One pass suffices: the column is
-    // normalised, so its mean is near 0 and its spread near 1.
-    let m = sum / (2.0 * n);
-    let var = sum_sq / (2.0 * n) - m * m;
+    // np.var(np.r_[A, B]): ddof 0 over the 2n values. From the sums of a + b and a² + b²: the
+    // column is normalised (mean near 0, spread near 1), so nothing cancels.
+    let m = sums[0] / (2.0 * n);
+    let var = sums[1] / (2.0 * n) - m * m;
     // SALib divides only where the variance exceeds eps, and gives 0 elsewhere.
     let ratio = |x: f64| if var > EPS { x / n / var } else { 0.0 };
-    let mut out = Vec::with_capacity(layout.n_estimates());
-    out.extend(s1.iter().map(|&x| ratio(x)));
-    out.extend(st.iter().map(|&x| 0.5 * ratio(x)));
+    for j in 0..d {
+        out[j] = ratio(sums[2 + j]);
+        out[d + j] = 0.5 * ratio(sums[2 + d + j]);
+    }
     if layout.second_order {
-        let mut p = 0;
+        let mut p = 2 * d;
         for j in 0..d {
             for k in j + 1..d {
-                out.push(ratio(s2[p]) - out[j] - out[k]);
+                out[p] = ratio(sums[2 + p]) - out[j] - out[k];
                 p += 1;
             }
         }
     }
-    out
 }
 
 /// NumPy's `std(ddof=1)`, two passes.
