@@ -1,4 +1,4 @@
-# Sourced by scripts/test.sh and bench/setup_venv.sh: the project's virtual environment
+# Sourced by scripts/test.sh and lab/setup_venv.sh: the project's virtual environment
 # .venv/ and this checkout's `cushion` package built into it by maturin. Run from the
 # repository's top folder.
 
