@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The work-precision study's tables, as docs/performance.md shows them, from its JSON.
+"""The work-precision study's tables, as docs/performance.md shows them, from its JSON
+(`python3 -m lab.make_docs` writes them into the page).
 
     python3 -m lab.study_tables [lab/results/work_precision.json]
 
@@ -157,12 +158,17 @@ def target_lines(table, table_settled):
     return lines
 
 
+def load(path):
+    """The study's JSON, its `at_error` and its `at_error_settled` tables."""
+    with open(path) as f:
+        study = json.load(f)
+    return study, study["at_error"], study["at_error_settled"]
+
+
 def main():
     path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "results",
                                                                "work_precision.json")
-    with open(path) as f:
-        study = json.load(f)
-    table, settled = study["at_error"], study["at_error_settled"]
+    study, table, settled = load(path)
     print(f"{study.get('Model name', '?')}, commit {study['git_commit'][:7]}, {study['date']}\n")
     if "paper-hydraulic-dt70" in table:
         print("paper-hydraulic-dt70, object final speed: time per run and evaluations\n")
