@@ -15,7 +15,7 @@ copied by hand. It writes:
   lab/results/design_vs_brute.json.
 
 The last two are the studies' own `--tables` modes, run with .venv/bin/python when it exists
-(else this interpreter); each is looked for in lab/ and, until it moves there, in bench/.
+(else this interpreter).
 Tables that come from runs without a committed result file (docs/stability.md's generated part,
 written by `python -m lab.stability_map`) are not touched. Exits with status 1 if a block's
 markers or a study's table could not be written. `--skip NAME ...` leaves blocks alone
@@ -71,17 +71,10 @@ def work_precision_blocks():
 
 
 def study_tables_mode(script):
-    """Run a study's own `--tables` mode, found in lab/ or (until it moves) bench/."""
-    for folder in ("lab", "bench"):
-        path = os.path.join(ROOT, folder, script)
-        if os.path.exists(path):
-            break
-    else:
-        print(f"{script}: found in neither lab/ nor bench/", file=sys.stderr)
-        return False
+    """Run a study's own `--tables` mode (`python -m lab.NAME --tables`)."""
     venv = os.path.join(ROOT, ".venv", "bin", "python")
     python = venv if os.path.exists(venv) else sys.executable
-    cmd = [python, "-m", f"lab.{script[:-3]}", "--tables"] if folder == "lab" else [python, path, "--tables"]
+    cmd = [python, "-m", f"lab.{script[:-3]}", "--tables"]
     done = subprocess.run(cmd, cwd=ROOT)
     if done.returncode != 0:
         print(f"{' '.join(cmd)}: exit status {done.returncode}", file=sys.stderr)
