@@ -47,7 +47,7 @@
 //!   points of its dense output where a new peak is possible (an end value above half the
 //!   peak so far, the stroke turning, the steps right after an event); every local top of the
 //!   samples near the largest value so far is located at once by Brent's search on the dense
-//!   output around it (`peaks.rs`). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
+//!   output around it (`peaks/`). `max_gas_pressure = p1(max_stroke)` (monotone in `s`).
 //! - **Early end** (`solver.early_end`): see [`simulate()`]; the summary equals the full run's to
 //!   the tolerance (tested). Besides the standing robot, the same end is taken while the robot
 //!   cruises on with no brake before `t_end` (a preload too strong for the sensor to switch, or

@@ -1,7 +1,7 @@
 //! What observes a run, apart from the physics it observes: each observer sees every accepted
 //! step and every event, and none of them changes the solution.
 //!
-//! - `observe/peak_sampler.rs`: the peaks of `|F_r|`, `F_c`, the stroke and the gas pressure;
+//! - `peaks/`: the peaks of `|F_r|`, `F_c`, the stroke and the gas pressure;
 //! - `observe/early_end.rs`: the early end, which stops the run once what is left of it is known
 //!   in closed form (`tail.rs`); off with `solver.early_end = false`;
 //! - `observe/recorder.rs`: the trajectory, when one is asked for.
@@ -11,15 +11,13 @@
 //! system (right-hand side, Jacobian, event functions and handlers), the observers watch.
 
 pub(crate) mod early_end;
-pub(crate) mod peak_sampler;
 pub(crate) mod recorder;
-mod top_step;
 
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
 use crate::model::Model;
+use crate::peaks::PeakSampler;
 use early_end::EarlyEnd;
-use peak_sampler::PeakSampler;
 use recorder::Recorder;
 
 /// The model with its observers, as the integrator sees it.

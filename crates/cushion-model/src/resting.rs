@@ -75,7 +75,7 @@ impl StopRinging {
 mod tests {
     use crate::model::Model;
     use crate::observe::early_end::EarlyEnd;
-    use crate::observe::peak_sampler::PeakSampler;
+    use crate::peaks::PeakSampler;
     use crate::Scene;
 
     /// The default scene at `t = 0`: the robot cruises at 1 m/s and its sensor has not switched,

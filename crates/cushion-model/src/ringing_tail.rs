@@ -31,7 +31,7 @@
 
 use crate::config::Module;
 use crate::model::Model;
-use crate::observe::peak_sampler::Peaks;
+use crate::peaks::Peaks;
 use crate::physics::{self, Phase, Segment};
 use crate::ringing::Ringing;
 

@@ -16,9 +16,9 @@ use crate::ledger;
 pub use crate::ledger::EnergyLedger;
 use crate::model::{to_point, Model};
 use crate::observe::early_end::EarlyEnd;
-use crate::observe::peak_sampler::PeakSampler;
 use crate::observe::recorder::Recorder;
 use crate::observe::Observed;
+use crate::peaks::PeakSampler;
 use crate::physics;
 use crate::summary::{RunStatus, SolverStats, Summary};
 use crate::tail;
@@ -233,7 +233,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         recorder,
     } = system;
     peaks.finish(&model);
-    // the half steps of the peak search (`observe/top_step.rs`) count with the solver's
+    // the half steps of the peak search (`peaks/top_step.rs`) count with the solver's
     // evaluations
     let mut out = out;
     out.stats.rhs_evals += peaks.halves_evals;

@@ -13,7 +13,7 @@
 use std::cell::OnceCell;
 
 use crate::model::Model;
-use crate::observe::peak_sampler::Peaks;
+use crate::peaks::Peaks;
 use crate::physics::Phase;
 use crate::ringing_tail::StopRinging;
 use crate::tail::{Tail, TailKind};
