@@ -52,12 +52,13 @@
 //!   the tolerance (tested). Besides the standing robot, the same end is taken while the robot
 //!   cruises on with no brake before `t_end` (a preload too strong for the sensor to switch, or
 //!   a dead time past the run), once the object is gone and the tool is stuck or at rest on its
-//!   stop (`resting.rs`): nothing can change any more there either.
+//!   stop (`early_end/riding.rs`): nothing can change any more there either.
 //! - **Ringing tail** (`solver.ringing_tail`, with early end): once only the tool's small ringing
 //!   on its stop is left (the robot braking, standing, or cruising with a known motion to
 //!   `t_end`), the run ends and that ringing is written in closed form (averaging method,
-//!   `ringing.rs`), where it can change no summary value and its predicted error in the robot
-//!   impulse is below `rtol (m_t + m_p) v_max` (`ringing_tail.rs`; tested against running to
+//!   `early_end/ringing.rs`), where it can change no summary value and its predicted error in
+//!   the robot impulse is below `rtol (m_t + m_p) v_max` (`early_end/ringing_search.rs`; tested
+//!   against running to
 //!   `t_end`).
 //! - **Cavitation** (extension, off by default): `p_m >= hydraulic.cavitation_pressure`, with
 //!   events at its onset and end; the orifice then carries `p_cav - p1`.
@@ -97,8 +98,9 @@
 //!
 //! Modules: [`config`] (scene keys, defaults, validation), [`physics`] (force laws, robot
 //! profile, preload equilibrium), [`model`] (the physics as an ODE system: right-hand side,
-//! events and their handlers, Jacobian), `observe` (what watches a run: the peaks, the early
-//! end, the trajectory recorder), `tail` (a run's end in closed form after its early end),
+//! events and their handlers, Jacobian), `observe` (the observers composed with the model for
+//! the integrator, and the trajectory recorder), `peaks` (a run's peaks, found as the steps
+//! come), `early_end` (when a run may end early, and its end in closed form after that),
 //! `ledger` (the energy ledger), [`simulate`](mod@simulate) (one run: the model and its
 //! observers composed), [`summary`](mod@summary), [`trajectory`].
 
@@ -107,18 +109,15 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::nonminimal_bool)]
 
 pub mod config;
+mod early_end;
 mod gas_law;
 mod ledger;
 pub mod model;
 mod observe;
 mod peaks;
 pub mod physics;
-mod resting;
-mod ringing;
-mod ringing_tail;
 pub mod simulate;
 pub mod summary;
-mod tail;
 pub mod trajectory;
 
 pub use config::{ConfigError, KeyInfo, Module, Scene};
