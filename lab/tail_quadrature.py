@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How well an n-point Gauss-Legendre rule integrates the ringing tail's powers over a half
 period, when the half period begins where the tool turns (aligned) and where it does not
-(the worst of 361 phases): the question behind `tail.rs`'s quadrature, whether half periods
+(the worst of 361 phases): the question behind `early_end/ledger.rs`'s quadrature, whether half periods
 that begin at the turns would let fewer nodes do the work of six.
 
     .venv/bin/python -m lab.tail_quadrature      # needs numpy (lab/requirements.txt)

@@ -246,7 +246,7 @@ pub struct Solver {
     /// `solver.early_end`: end the run once nothing can change any more. Extension.
     pub early_end: bool,
     /// `solver.ringing_tail`: with `early_end`, end the run once only the tool's small ringing on
-    /// its stop is left and write that ringing in closed form (`ringing_tail.rs`). Extension.
+    /// its stop is left and write that ringing in closed form (`early_end/ringing_search.rs`). Extension.
     pub ringing_tail: bool,
 }
 

@@ -12,8 +12,9 @@
 //!
 //! Modules: [`config`] (scene keys, defaults, validation), [`physics`] (force laws, robot
 //! profile, preload equilibrium), [`model`] (the physics as an ODE system: right-hand side,
-//! events and their handlers, Jacobian), `observe` (what watches a run: the peaks, the early
-//! end, the trajectory recorder), `tail` (a run's end in closed form after its early end),
+//! events and their handlers, Jacobian), `observe` (the observers composed with the model for
+//! the integrator, and the trajectory recorder), `peaks` (a run's peaks, found as the steps
+//! come), `early_end` (when a run may end early, and its end in closed form after that),
 //! `ledger` (the energy ledger), [`simulate`](mod@simulate) (one run: the model and its
 //! observers composed), [`summary`](mod@summary), [`trajectory`].
 
@@ -22,18 +23,15 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::nonminimal_bool)]
 
 pub mod config;
+mod early_end;
 mod gas_law;
 mod ledger;
 pub mod model;
 mod observe;
 mod peaks;
 pub mod physics;
-mod resting;
-mod ringing;
-mod ringing_tail;
 pub mod simulate;
 pub mod summary;
-mod tail;
 pub mod trajectory;
 
 pub use config::{ConfigError, KeyInfo, Module, Scene};

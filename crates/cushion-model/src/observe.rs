@@ -1,25 +1,22 @@
 //! What observes a run, apart from the physics it observes: each observer sees every accepted
 //! step and every event, and none of them changes the solution.
 //!
-//! - `observe/peak_sampler.rs`: the peaks of `|F_r|`, `F_c`, the stroke and the gas pressure;
-//! - `observe/early_end.rs`: the early end, which stops the run once what is left of it is known
-//!   in closed form (`tail.rs`); off with `solver.early_end = false`;
+//! - `peaks/`: the peaks of `|F_r|`, `F_c`, the stroke and the gas pressure;
+//! - `early_end/`: the early end, which stops the run once what is left of it is known in
+//!   closed form (`early_end/tail.rs`); off with `solver.early_end = false`;
 //! - `observe/recorder.rs`: the trajectory, when one is asked for.
 //!
 //! [`Observed`] composes them with the model for the integrator, in the shape of
 //! OrdinaryDiffEq's callbacks beside its problem: the model answers every question about the
 //! system (right-hand side, Jacobian, event functions and handlers), the observers watch.
 
-pub(crate) mod early_end;
-pub(crate) mod peak_sampler;
 pub(crate) mod recorder;
-mod top_step;
 
 use cushion_ode::{Control, Direction, EventAction, Matrix, Method, OdeSystem, State, Step};
 
+use crate::early_end::EarlyEnd;
 use crate::model::Model;
-use early_end::EarlyEnd;
-use peak_sampler::PeakSampler;
+use crate::peaks::PeakSampler;
 use recorder::Recorder;
 
 /// The model with its observers, as the integrator sees it.

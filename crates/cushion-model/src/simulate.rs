@@ -8,20 +8,19 @@
 //! - Robot impulse `int F_r dt` is exact from momentum: `F_r = -(m_t a_t + F_c)` and
 //!   `m_p a_p = F_c` give `int F_r dt = -(m_t dv_t + m_p dv_p)` (rigid: `dv_r` for `dv_t`); with
 //!   plane friction `int F_c dt` is a quadrature state instead.
-//! - Early end (`observe/early_end.rs`): once nothing a summary reports can change, the run
-//!   stops and its final values at `t_end` come from its tail in closed form (`tail.rs`).
+//! - Early end (`early_end/`): once nothing a summary reports can change, the run stops and
+//!   its final values at `t_end` come from its tail in closed form (`early_end/tail.rs`).
 
 use crate::config::{Module, Scene};
+use crate::early_end::{self, EarlyEnd};
 use crate::ledger;
 pub use crate::ledger::EnergyLedger;
 use crate::model::{to_point, Model};
-use crate::observe::early_end::EarlyEnd;
-use crate::observe::peak_sampler::PeakSampler;
 use crate::observe::recorder::Recorder;
 use crate::observe::Observed;
+use crate::peaks::PeakSampler;
 use crate::physics;
 use crate::summary::{RunStatus, SolverStats, Summary};
-use crate::tail;
 use crate::trajectory::{EventLogEntry, Trajectory};
 use cushion_ode::{Output, SolverOptions, State, Stats, Status, Tolerance};
 
@@ -131,7 +130,7 @@ fn resume_after_tail(system: &mut Observed, out: &Outcome, rtol: f64) -> Option<
         .take_if(|tail| tail.resume_time().is_some())?;
     system.peaks.before_time_stop(&system.model);
     let (ts, mut y) = tail.resume(&mut system.model, &out.y)?;
-    tail::add_to_ledger(&system.model, &tail, &out.y, ts, rtol, &mut y);
+    early_end::add_to_ledger(&system.model, &tail, &out.y, ts, rtol, &mut y);
     if let Some(recorder) = system.recorder.as_mut() {
         recorder.record_tail(&system.model, &tail, &out.y, ts);
         recorder.take_events(&system.model);
@@ -233,7 +232,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         recorder,
     } = system;
     peaks.finish(&model);
-    // the half steps of the peak search (`observe/top_step.rs`) count with the solver's
+    // the half steps of the peak search (`peaks/top_step.rs`) count with the solver's
     // evaluations
     let mut out = out;
     out.stats.rhs_evals += peaks.halves_evals;
@@ -258,7 +257,7 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     let mut t = out.t;
     if let Some(tail) = &tail {
         y = tail.play(&mut model, &out.y, t_end);
-        tail::add_to_ledger(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
+        early_end::add_to_ledger(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
         t = t_end;
     }
     let l = model.layout;

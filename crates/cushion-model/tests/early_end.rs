@@ -48,7 +48,7 @@ fn early_end_equals_running_to_t_end() {
 fn early_end_while_the_robot_cruises_on() {
     // The robot never brakes inside the run: its sensor never switches (a gas preload too strong
     // for the object to press the tool in, or nothing to hit), or the dead time ends after
-    // t_end. Once the object is gone and the tool rests on its stop (`resting.rs`), rings there
+    // t_end. Once the object is gone and the tool rests on its stop (`src/early_end/riding.rs`), rings there
     // in closed form, or is stuck, the run ends; its summary is the full run's at a tight
     // tolerance, and the tool rides on with the robot.
     let strong_gas = with(
@@ -424,8 +424,8 @@ fn early_end_trajectory_keeps_its_uniform_samples() {
 #[test]
 fn the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance() {
     // The ledger's residual over a ringing tail holds the closed form's energy error against
-    // the force law (`tail.rs::tests`), which the tail's admission keeps within 3 rtol of the
-    // ledger's scale (`ringing_tail.rs`, `energy_error_allowed`), and the integrated ledger's
+    // the force law (`src/early_end/ledger.rs`, its tests), which the tail's admission keeps within 3 rtol of the
+    // ledger's scale (`src/early_end/ringing_search.rs`, `ENERGY_ERROR`), and the integrated ledger's
     // own global error, a few rtol. On the shallowest stop of the tested scenes (5 kPa gas):
     // 6.8e-7 at rtol 1e-6, 5.2e-8 at 1e-8; without the energy test the first was 1.4e-5.
     for rtol in ["1e-6", "1e-8"] {

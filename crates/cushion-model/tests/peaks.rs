@@ -225,7 +225,7 @@ fn dop853_tops_are_searched_on_half_steps() {
     // (about 0.1 ms), where its dense output is not stable; it put the tool's velocity 5e-5
     // m/s off inside a step and, through the orifice's `v |v|`, the peak robot force 1.1e-3
     // (relative) above the run's own solution, 13 µs from the top (1.3e-4 at rtol 1e-5, 9e-7
-    // at 1e-7). Searched on the step integrated again in halves (`observe/top_step.rs`), the
+    // at 1e-7). Searched on the step integrated again in halves (`src/peaks/top_step.rs`), the
     // peak is as good as the solution: measured 5.3e-7, 3.6e-7 and 1.4e-7 off at rtol 1e-5,
     // 1e-6 and 1e-7 (DOPRI5 at 1e-6: 9.7e-6), within 1.6 µs of the top.
     let scene = [

@@ -1,7 +1,7 @@
 //! The physics at one instant: every force, pressure and power of the scene at a state, for
 //! the right-hand side, the samples, the event handlers and the trajectory.
 
-use super::{Model, Regime};
+use super::{Model, Regime, MAX_STATES};
 use crate::config::Module;
 use crate::physics::{self, Segment};
 use crate::trajectory::TrajectoryPoint;
@@ -54,6 +54,29 @@ impl Model {
     /// Everything at `(t, y)` with robot segment `seg` and regime `r`.
     pub(crate) fn eval(&self, t: f64, y: &[f64], seg: &Segment, r: &Regime) -> Eval {
         self.eval_inline(t, y, seg, r)
+    }
+
+    /// The module's force on the tool `G` (N, + forward) at stroke `s` and rate `sd`, the rest of
+    /// the state as in `y` (same regime): what the tool's equilibrium on its stop and the
+    /// oscillator about it are found from (`early_end/linearisation.rs`).
+    pub(crate) fn tool_force(&self, t: f64, y: &[f64], seg: &Segment, s: f64, sd: f64) -> f64 {
+        let n = self.layout.n.clamp(1, MAX_STATES);
+        let mut z = [0.0; MAX_STATES];
+        z[..n].copy_from_slice(&y[..n]);
+        let i = self.layout.tool.unwrap_or(0);
+        let (x_r, v_r, _) = seg.at(t);
+        z[i] = x_r - s;
+        z[i + 1] = v_r - sd;
+        self.eval(t, &z[..n], seg, &self.regime).g
+    }
+
+    /// Depth of the holding stop at stroke `s` (m; > 0 in contact).
+    pub(crate) fn holding_depth(&self, s: f64) -> f64 {
+        if self.regime.fwd {
+            -s
+        } else {
+            s - self.p.stroke
+        }
     }
 
     /// [`Model::eval`], inlined into the hot callers (the right-hand side and the per-step

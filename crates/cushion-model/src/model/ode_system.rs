@@ -182,7 +182,7 @@ impl<const N: usize> OdeSystem<N> for Model {
 impl Model {
     /// A time stop at `t`: the robot brakes (the sensor's dead time is over) or reaches a kink
     /// of its profile. Returns whether it was a kink (the robot stands, or starts to cruise),
-    /// after which nothing may be left to change (`observe/early_end.rs`).
+    /// after which nothing may be left to change (`early_end/`).
     pub(crate) fn time_stop(&mut self, t: f64, y: &[f64], ctl: &mut Control) -> bool {
         if let Some(tb) = self.pending_brake {
             if (t - tb).abs() <= 1e-12 * (1.0 + tb.abs()) {

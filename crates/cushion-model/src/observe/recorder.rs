@@ -5,8 +5,8 @@
 
 use cushion_ode::Step;
 
+use crate::early_end::Tail;
 use crate::model::{to_point, Model};
-use crate::tail::Tail;
 use crate::trajectory::{Trajectory, TrajectoryPoint};
 
 /// Recorded points, and where the uniform samples stand.

@@ -1,6 +1,9 @@
-//! Tests of `peaks.rs`.
+//! Tests of the peak rule on sampled functions: a tracker fed the samples, each top it asks for
+//! searched by Brent's method (`tracker.rs`, `search.rs`).
 
-use super::*;
+use super::sampler::K;
+use super::search::*;
+use super::tracker::*;
 use std::cell::Cell;
 
 #[test]

@@ -1,17 +1,22 @@
 //! The peaks of a run (`|F_r|`, `F_c`, the stroke `s`, and the gas pressure of the compressible
 //! liquid), sampled at each accepted step, each local top near the largest value searched on
-//! the dense output at once (`peaks.rs`).
+//! the dense output at once (`search.rs`).
 //!
 //! Each step is sampled at its end, and at three interior points of its dense output where a
 //! new peak is possible. A top inside the step is searched on the step's own dense output; a
 //! top at its end, once the next step's first sample confirms it, on both steps (the step is
 //! kept until then).
 
+use super::kept_step::KeptStep;
+use super::search::locate_on;
 use super::top_step::Unstable;
+use super::tracker::{top_window, Peak, PeakTracker};
 use crate::model::{Eval, Model, Regime};
-use crate::peaks::{locate_on, top_window, KeptStep, Peak, PeakTracker, K};
 use crate::physics::Segment;
 use cushion_ode::Step;
+
+/// Samples of the physics per step (besides its start).
+pub(crate) const K: usize = 4;
 
 /// The peaks found so far (after [`PeakSampler::finish`], the run's).
 #[derive(Clone, Copy, Debug)]
@@ -280,9 +285,7 @@ impl PeakSampler {
             self.sample_start = true;
         }
     }
-}
 
-impl PeakSampler {
     /// [`PeakSampler::on_step`]'s search of the tops its samples confirm, where the dense
     /// output of this step or of the kept one before it is not stable: a force's top whose
     /// bracket reaches into such a step is searched on it integrated again in halves

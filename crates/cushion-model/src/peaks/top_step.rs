@@ -17,13 +17,15 @@
 //! is searched on the dense outputs of two DOP853 steps over the halves of the step, from its
 //! start, each as accurate as the accepted step
 //! (`tests/peaks.rs::dop853_tops_are_searched_on_half_steps`; which quantities:
-//! `peak_sampler.rs`, `FAST`). They cost [`EVALS`] evaluations of `f` a step, counted with the
+//! `sampler.rs`, `FAST`). They cost [`EVALS`] evaluations of `f` a step, counted with the
 //! run's. DOP853 is the one method whose dense output has a finite stability boundary
 //! (`cushion_ode::stepper::Stepper::dense_stability_boundary`), so a step whose dense output is
 //! not stable is a DOP853 step, and the halves are DOP853's too.
 
+use super::kept_step::{KeptStep, MAX_DYNAMIC};
+use super::search::locate_on;
+use super::tracker::{Bracket, Peak};
 use crate::model::{Eval, Model, Regime};
-use crate::peaks::{locate_on, Bracket, KeptStep, Peak, MAX_DYNAMIC};
 use crate::physics::Segment;
 use cushion_ode::dop853::Dop853;
 use cushion_ode::stepper::Stepper;

@@ -1,12 +1,15 @@
-//! Rest on a stop while the robot cruises on: the settled early end of a run whose robot never
-//! brakes before `t_end` (its sensor never switches, or the dead time ends after the run).
+//! The riding tail: the robot cruises on to `t_end` with no brake before it (its sensor never
+//! switches, or the dead time ends after the run), the object is absent or outruns the robot,
+//! and the tool rides with the robot: stuck by dry friction (short of the sensor, or it would
+//! have switched), or at rest on a stop. Nothing can change any more.
 //!
-//! A tool pressed onto its stop by a strong preload is overdamped there (the stop's
-//! Hunt–Crossley damping `chi d^1.5` grows with the depth): DOPRI5 then steps at its stability
-//! limit, and its solution keeps a wobble of the tolerance's size in the tool's speed (about
-//! `rtol v_r`: 1e-6 m/s at 1 m/s). The speed test of the standing robot's early end
-//! (`100 atol`) never passes on it, so without the test below such runs would integrate the
-//! resting tool to `t_end` (`tests/early_end.rs::early_end_while_the_robot_cruises_on`).
+//! Rest on a stop: a tool pressed onto its stop by a strong preload is overdamped there (the
+//! stop's Hunt–Crossley damping `chi d^1.5` grows with the depth): DOPRI5 then steps at its
+//! stability limit, and its solution keeps a wobble of the tolerance's size in the tool's speed
+//! (about `rtol v_r`: 1e-6 m/s at 1 m/s). The speed test of the standing robot's settled tail
+//! (`100 atol`, `settled.rs`) never passes on it, so without the test below such runs would
+//! integrate the resting tool to `t_end`
+//! (`tests/early_end.rs::early_end_while_the_robot_cruises_on`).
 //!
 //! Here the tool is at rest when its deviation from the equilibrium on its stop, as the speed
 //! `hypot(sd, w0 u)` (`u = s - s_eq`; the largest speed its energy allows in the linearised
@@ -16,9 +19,12 @@
 //! tool is then, at `t_end`, at the equilibrium to a small fraction of the speed tolerance,
 //! riding with the robot: the extrapolation puts it there (`x_t = x_r - s_eq`, `v_t = v_r`).
 
+use super::linearisation::Linearisations;
+use super::tail::TailKind;
+use super::{cruising_to_end, object_outruns};
 use crate::model::{Eval, Model};
 use crate::physics::Segment;
-use crate::ringing_tail::StopRinging;
+use crate::Scene;
 
 /// How much the tool's deviation from rest must decay before `t_end`.
 const DECAY_BEFORE_END: f64 = 1000.0;
@@ -26,12 +32,67 @@ const DECAY_BEFORE_END: f64 = 1000.0;
 /// Largest deviation from rest, as a multiple of the speed tolerance `atol + rtol |v_r|`.
 const REST_SPEED: f64 = 10.0;
 
-impl StopRinging {
+/// The riding tail's test: the solver's tolerances, which say when the tool is at rest.
+pub(super) struct Riding {
+    atol: f64,
+    rtol: f64,
+}
+
+impl Riding {
+    pub fn new(scene: &Scene) -> Riding {
+        Riding {
+            atol: scene.solver.atol,
+            rtol: scene.solver.rtol,
+        }
+    }
+
+    /// The riding tail from `(t, y)`, if the robot cruises on to `t_end`, the object is out of
+    /// contact and outruns it, and the tool rides with it (see the module docs); `lins` are the
+    /// tool's equilibria on its stop, kept.
+    pub fn tail(
+        &self,
+        lins: &mut Linearisations,
+        m: &Model,
+        t: f64,
+        y: &[f64],
+    ) -> Option<TailKind> {
+        if m.regime.obj_contact || !cruising_to_end(m) {
+            return None;
+        }
+        let seg = *m.robot.current();
+        // the run goes on while the robot may reach the object again (before the impact,
+        // always): found from the state, without the physics. The tool that may end here rides
+        // on with the robot, so the object must outrun the robot as well as the tool's speed
+        // of the moment, which a tool at rest on its stop may have a little below the robot's
+        // (by up to its rest tolerance)
+        let v_r = seg.at(t).1;
+        let v_t = m.layout.tool.map_or(v_r, |i| y[i + 1]);
+        if !object_outruns(m, y, v_t.max(v_r)) {
+            return None;
+        }
+        match m.layout.tool {
+            None => Some(TailKind::Riding { stroke: None }),
+            // stuck (short of the sensor, or it would have switched; and no compressible liquid
+            // still flowing through the orifice), or at rest on a stop
+            Some(_) if m.regime.tool_stuck => m
+                .layout
+                .liquid
+                .is_none()
+                .then_some(TailKind::Riding { stroke: None }),
+            Some(_) => {
+                let e = m.eval(t, y, &seg, &m.regime);
+                self.rest_on_stop(lins, m, t, y, &seg, &e)
+                    .map(|s| TailKind::Riding { stroke: Some(s) })
+            }
+        }
+    }
+
     /// The equilibrium stroke (m) of a tool that has come to rest on its stop, if it has (see
     /// the module docs); `e` is the physics at `(t, y)` on the robot segment `seg`. It must also
     /// stay short of the sensor, if that has not switched yet.
-    pub(crate) fn rest_on_stop(
-        &mut self,
+    fn rest_on_stop(
+        &self,
+        lins: &mut Linearisations,
         m: &Model,
         t: f64,
         y: &[f64],
@@ -50,7 +111,7 @@ impl StopRinging {
         {
             return None;
         }
-        let lin = self.linearisation(m, t, y, seg, seg.a, e.s)?;
+        let lin = lins.linearisation(m, t, y, seg, seg.a, e.s)?;
         let c = &lin.coef;
         if !(c.k1 > 0.0 && c.c > 0.0) {
             return None;
@@ -73,9 +134,9 @@ impl StopRinging {
 
 #[cfg(test)]
 mod tests {
+    use crate::early_end::EarlyEnd;
     use crate::model::Model;
-    use crate::observe::early_end::EarlyEnd;
-    use crate::observe::peak_sampler::PeakSampler;
+    use crate::peaks::PeakSampler;
     use crate::Scene;
 
     /// The default scene at `t = 0`: the robot cruises at 1 m/s and its sensor has not switched,
