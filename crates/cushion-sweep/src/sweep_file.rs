@@ -7,9 +7,10 @@
 //! [set]                                   # optional overrides of the base scene (docs/scene-keys.md)
 //! "solver.rtol" = 1e-6
 //! [sampling]
-//! mode = "sobol"                          # grid (default) | zip | lhs | sobol
-//! samples = 4096                          # lhs and sobol only
-//! seed = 7                                # lhs and sobol only (default 0)
+//! mode = "sobol"                          # grid (default) | zip | lhs | sobol | saltelli
+//! samples = 4096                          # lhs, sobol and saltelli (base points, a power of two)
+//! seed = 7                                # lhs, sobol and saltelli (default 0)
+//! second_order = true                     # saltelli only (default true)
 //! [[axis]]
 //! key = "robot.dead_time"
 //! linspace = [0.0, 0.1, 11]               # or values = [...], logspace = [start, stop, n], range = [low, high]
@@ -26,7 +27,11 @@
 //! - `linspace = [start, stop, n]`: `n` evenly spaced values, both ends included (`n = 1`: `start`).
 //! - `logspace = [start, stop, n]`: `n` values evenly spaced in log, both **endpoints** given as
 //!   values (not exponents): `logspace = [300, 1e5, 8]` runs 300 Pa ... 100 kPa. Both > 0.
-//! - `range = [low, high]` (lhs and sobol only), with `scale = "linear"` (default) or `"log"`.
+//! - `range = [low, high]` (lhs, sobol and saltelli only), with `scale = "linear"` (default) or
+//!   `"log"`, or a distribution truncated to the range: `dist = "uniform"` (default),
+//!   `"loguniform"` (= `scale = "log"`), `"normal"` (`mean`, `sd`), `"lognormal"` (`median`,
+//!   `sigma`), `"triangular"` (`mode`). A normal or lognormal may omit `range` (untruncated),
+//!   unless the key must be positive and the distribution could draw below zero.
 //!
 //! Modes: `grid` is the Cartesian product, first axis slowest (run 0 takes every axis's first
 //! value); `zip` takes the i-th value of every axis for run i (all axes the same length); `lhs`
@@ -35,6 +40,10 @@
 //! onto `[low, high]` (log-uniformly with `scale = "log"`), and a list axis (`values`,
 //! `linspace`, `logspace`, e.g. categorical `module`) takes value `floor(u * k)` of its `k`
 //! values, so every value is drawn evenly (exactly evenly with lhs when `k` divides `samples`).
+//! A `range` axis with a distribution takes its inverse CDF of the coordinate. `saltelli`
+//! (`cushion-sensitivity`) runs `samples` base points in SALib's Saltelli layout, `N (2D + 2)`
+//! runs (`N (D + 2)` with `second_order = false`), with `range` axes only; a `[sensitivity]`
+//! table tells `cushion sensitivity` what to analyse.
 //!
 //! Run numbers are 0-based. Every error names the key (and the axis number), and TOML syntax
 //! errors name the line.
@@ -43,6 +52,7 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use cushion_model::Scene;
+use cushion_sensitivity::{block_len, Marginal, SaltelliSample};
 use toml::Value;
 
 mod axis;
@@ -57,6 +67,8 @@ pub enum Mode {
     Zip,
     Lhs,
     Sobol,
+    /// SALib's Saltelli layout over a scrambled Sobol sequence (`cushion-sensitivity`).
+    Saltelli,
 }
 
 impl Mode {
@@ -66,6 +78,7 @@ impl Mode {
             Mode::Zip => "zip",
             Mode::Lhs => "lhs",
             Mode::Sobol => "sobol",
+            Mode::Saltelli => "saltelli",
         }
     }
 }
@@ -149,10 +162,18 @@ pub struct SweepFile {
     /// `[set]` overrides, in file order, flattened to `section.name` keys.
     pub set: Vec<(String, Value)>,
     pub mode: Mode,
-    /// lhs and sobol only.
+    /// lhs and sobol: the points; saltelli: the base points `N` (the runs are `N (2D + 2)`, or
+    /// `N (D + 2)` without second order).
     pub samples: u64,
     pub seed: u64,
     pub axes: Vec<Axis>,
+    /// Per axis: its distribution when it has one beyond uniform and loguniform (`dist =
+    /// "normal" | "lognormal" | "triangular"`), drawn by the inverse CDF of its unit coordinate.
+    pub marginals: Vec<Option<Marginal>>,
+    /// saltelli: the sample holds the `BA` rows for second-order indices (default true).
+    pub second_order: bool,
+    /// The `[sensitivity]` table, as written (read by `cushion sensitivity`).
+    pub sensitivity: Option<toml::Table>,
     pub record: Record,
     pub chunk_size: usize,
     pub invalid_runs: InvalidRuns,
@@ -224,7 +245,7 @@ impl SweepFile {
         })?;
         check_keys(
             &doc,
-            &["name", "scene", "set", "sampling", "axis", "output"],
+            &["name", "scene", "set", "sampling", "axis", "output", "sensitivity"],
             "the sweep file",
         )?;
 
@@ -282,7 +303,11 @@ impl SweepFile {
             Some(Value::Table(t)) => t,
             Some(_) => return Err("`sampling` must be a table [sampling]".to_string()),
         };
-        check_keys(sampling, &["mode", "samples", "seed"], "[sampling]")?;
+        check_keys(
+            sampling,
+            &["mode", "samples", "seed", "second_order"],
+            "[sampling]",
+        )?;
         let mode = match sampling.get("mode") {
             None => Mode::Grid,
             Some(Value::String(s)) => match s.as_str() {
@@ -290,19 +315,20 @@ impl SweepFile {
                 "zip" => Mode::Zip,
                 "lhs" => Mode::Lhs,
                 "sobol" => Mode::Sobol,
+                "saltelli" => Mode::Saltelli,
                 _ => {
                     return Err(format!(
-                        "[sampling] mode = {s:?}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\""
+                        "[sampling] mode = {s:?}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\", \"saltelli\""
                     ))
                 }
             },
             Some(other) => {
                 return Err(format!(
-                    "[sampling] mode = {other}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\""
+                    "[sampling] mode = {other}: allowed \"grid\", \"zip\", \"lhs\", \"sobol\", \"saltelli\""
                 ))
             }
         };
-        let random = matches!(mode, Mode::Lhs | Mode::Sobol);
+        let random = matches!(mode, Mode::Lhs | Mode::Sobol | Mode::Saltelli);
         let samples = match (sampling.get("samples"), random) {
             (None, true) => {
                 return Err(format!("[sampling] mode {} needs `samples` (an integer >= 1)", mode.name()))
@@ -310,7 +336,7 @@ impl SweepFile {
             (None, false) => 0,
             (Some(_), false) => {
                 return Err(format!(
-                    "[sampling] `samples` is for lhs and sobol only (mode is {}: the axes set the number of runs)",
+                    "[sampling] `samples` is for lhs, sobol and saltelli only (mode is {}: the axes set the number of runs)",
                     mode.name()
                 ))
             }
@@ -333,7 +359,7 @@ impl SweepFile {
             (None, _) => 0,
             (Some(_), false) => {
                 return Err(format!(
-                    "[sampling] `seed` is for lhs and sobol only (mode is {})",
+                    "[sampling] `seed` is for lhs, sobol and saltelli only (mode is {})",
                     mode.name()
                 ))
             }
@@ -348,13 +374,38 @@ impl SweepFile {
             }
         };
 
+        if mode == Mode::Saltelli && !samples.is_power_of_two() {
+            return Err(format!(
+                "[sampling] samples = {samples}: saltelli takes a power of two (base points) from 1 to {}",
+                SaltelliSample::MAX_BASE_POINTS
+            ));
+        }
+        let second_order = match (sampling.get("second_order"), mode) {
+            (None, _) => true,
+            (Some(Value::Boolean(b)), Mode::Saltelli) => *b,
+            (Some(Value::Boolean(_)), _) => {
+                return Err(format!(
+                    "[sampling] `second_order` is for saltelli only (mode is {})",
+                    mode.name()
+                ))
+            }
+            (Some(other), _) => {
+                return Err(format!(
+                    "[sampling] second_order = {other}: must be true or false"
+                ))
+            }
+        };
+
         // [[axis]]
         let mut axes = Vec::new();
+        let mut marginals = Vec::new();
         match doc.get("axis") {
             None => {}
             Some(Value::Array(arr)) => {
                 for (i, v) in arr.iter().enumerate() {
-                    axes.push(parse_axis(i, v, mode)?);
+                    let (axis, marginal) = parse_axis(i, v, mode, &base)?;
+                    axes.push(axis);
+                    marginals.push(marginal);
                 }
             }
             Some(_) => return Err("`axis` must be an array of tables [[axis]]".to_string()),
@@ -399,6 +450,24 @@ impl SweepFile {
                 sobol_burley::NUM_DIMENSIONS
             ));
         }
+
+        if mode == Mode::Saltelli {
+            SaltelliSample::new(axes.len(), samples as usize, second_order, seed).map_err(|e| {
+                match e {
+                    cushion_sensitivity::SensitivityError::Config { key, value, allowed }
+                        if key == "inputs" =>
+                    {
+                        format!("[[axis]]: saltelli needs 1 to {} `range` axes, got {value} ({allowed})", SaltelliSample::MAX_INPUTS)
+                    }
+                    other => format!("[sampling] {other}"),
+                }
+            })?;
+        }
+        let sensitivity = match doc.get("sensitivity") {
+            None => None,
+            Some(Value::Table(t)) => Some(t.clone()),
+            Some(_) => return Err("`sensitivity` must be a table [sensitivity]".to_string()),
+        };
 
         // [output]
         let output = match doc.get("output") {
@@ -453,6 +522,9 @@ impl SweepFile {
             samples,
             seed,
             axes,
+            marginals,
+            second_order,
+            sensitivity,
             record: Record::None,
             chunk_size,
             invalid_runs,
@@ -506,6 +578,7 @@ impl SweepFile {
             }
             Mode::Zip => Ok(self.axes.first().map(|a| list_len(a) as u64).unwrap_or(1)),
             Mode::Lhs | Mode::Sobol => Ok(self.samples),
+            Mode::Saltelli => Ok(self.samples * block_len(self.axes.len(), self.second_order) as u64),
         }
     }
 }

@@ -1,7 +1,8 @@
 //! One `[[axis]]` of a sweep file: its key and its values (`values`, `linspace`, `logspace`,
-//! `range` with `scale`), checked against the sampling mode.
+//! `range` with `scale` or a distribution `dist`), checked against the sampling mode.
 
 use super::*;
+use cushion_sensitivity::{Distribution, Domain, Marginal};
 
 /// `(start, stop, n)` of a linspace/logspace array.
 fn spaced(key: &str, form: &str, v: &Value) -> Result<(f64, f64, usize), String> {
@@ -73,7 +74,118 @@ pub fn logspace(start: f64, stop: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-pub(super) fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String> {
+/// The distribution keys of a `range` axis, besides `range` and `scale`.
+const DIST_KEYS: &[&str] = &["dist", "mean", "sd", "median", "sigma", "mode"];
+
+/// The distribution an axis asks for (`dist` and its parameters), checked against its range.
+/// `None` for a uniform or loguniform axis, which the sampler maps as it always has.
+fn parse_dist(
+    t: &toml::Table,
+    label: &str,
+    key: &str,
+    range: Option<(f64, f64)>,
+    base: &Scene,
+) -> Result<Option<Marginal>, String> {
+    let name = match t.get("dist") {
+        None => "uniform",
+        Some(Value::String(s)) => s.as_str(),
+        Some(other) => {
+            return Err(format!(
+                "{label}: dist = {other}: allowed \"uniform\", \"loguniform\", \"normal\", \"lognormal\", \"triangular\""
+            ))
+        }
+    };
+    let wants: &[&str] = match name {
+        "uniform" | "loguniform" => &[],
+        "normal" => &["mean", "sd"],
+        "lognormal" => &["median", "sigma"],
+        "triangular" => &["mode"],
+        other => {
+            return Err(format!(
+                "{label}: dist = {other:?}: allowed \"uniform\", \"loguniform\", \"normal\", \"lognormal\", \"triangular\""
+            ))
+        }
+    };
+    for k in &DIST_KEYS[1..] {
+        if t.contains_key(*k) && !wants.contains(k) {
+            return Err(format!(
+                "{label}: `{k}` does not go with dist = \"{name}\" (it takes {})",
+                if wants.is_empty() {
+                    "no parameter but `range`".to_string()
+                } else {
+                    wants.iter().map(|w| format!("`{w}`")).collect::<Vec<_>>().join(", ")
+                }
+            ));
+        }
+    }
+    let param = |k: &str| -> Result<f64, String> {
+        match t.get(k) {
+            None => Err(format!(
+                "{label}: dist = \"{name}\" needs `{k}` (it takes {})",
+                wants.iter().map(|w| format!("`{w}`")).collect::<Vec<_>>().join(", ")
+            )),
+            Some(v) => as_number(v)
+                .ok_or_else(|| format!("{label}: {k} = {v}: must be a number")),
+        }
+    };
+    let need_range = || {
+        range.ok_or_else(|| format!("{label}: dist = \"{name}\" needs `range = [low, high]`"))
+    };
+    let dist = match name {
+        "uniform" | "loguniform" => return Ok(None),
+        "normal" => Distribution::Normal {
+            mean: param("mean")?,
+            sd: param("sd")?,
+        },
+        "lognormal" => Distribution::LogNormal {
+            median: param("median")?,
+            sigma: param("sigma")?,
+        },
+        _ => {
+            let (low, high) = need_range()?;
+            Distribution::Triangular {
+                low,
+                mode: param("mode")?,
+                high,
+            }
+        }
+    };
+    // A key the scene refuses below zero (a mass, a radius, a pressure, a time) cannot take
+    // an untruncated normal: some of its draws would be negative.
+    let domain = if range.is_none() && refuses_negative(base, key) {
+        Domain::Positive
+    } else {
+        Domain::Real
+    };
+    let range = match dist {
+        Distribution::Triangular { .. } => None,
+        _ => range,
+    };
+    Marginal::new(key, dist, range, domain)
+        .map(Some)
+        .map_err(|e| format!("{label}: {e}"))
+}
+
+/// Whether the scene refuses a negative value of `key` (probed on the sweep's base scene).
+fn refuses_negative(base: &Scene, key: &str) -> bool {
+    let mut probe = base.clone();
+    if probe.set(key, &Value::Float(-1.0)).is_err() {
+        return true;
+    }
+    match probe.validate() {
+        Ok(()) => false,
+        Err(e) => e.to_string().contains(key),
+    }
+}
+
+/// Parse `[[axis]]` number `i` (0-based); with its distribution when it has one beyond
+/// uniform and loguniform.
+pub(super) fn parse_axis(
+    i: usize,
+    v: &Value,
+    mode: Mode,
+    base: &Scene,
+) -> Result<(Axis, Option<Marginal>), String> {
     let t = v
         .as_table()
         .ok_or_else(|| format!("[[axis]] #{}: must be a table with `key` and values", i + 1))?;
@@ -88,21 +200,32 @@ pub(super) fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String
         None => return Err(format!("[[axis]] #{}: missing `key`", i + 1)),
     };
     let label = format!("[[axis]] #{} (`{key}`)", i + 1);
-    check_keys(
-        t,
-        &["key", "values", "linspace", "logspace", "range", "scale"],
-        &label,
-    )?;
+    let mut allowed = vec!["key", "values", "linspace", "logspace", "range", "scale"];
+    allowed.extend_from_slice(DIST_KEYS);
+    check_keys(t, &allowed, &label)?;
     if !Scene::keys().contains(&key.as_str()) {
         return Err(format!(
             "{label}: unknown scene key `{key}` (allowed: {})",
             Scene::keys().join(", ")
         ));
     }
-    let forms: Vec<&str> = ["values", "linspace", "logspace", "range"]
+    let mut forms: Vec<&str> = ["values", "linspace", "logspace", "range"]
         .into_iter()
         .filter(|f| t.contains_key(*f))
         .collect();
+    // A normal or lognormal needs no range: its distribution is the axis.
+    let unbounded_dist = matches!(
+        t.get("dist").and_then(Value::as_str),
+        Some("normal") | Some("lognormal")
+    );
+    if forms.is_empty() && unbounded_dist {
+        forms.push("dist");
+    }
+    if let (true, Some(d)) = (forms.is_empty(), t.get("dist")) {
+        return Err(format!(
+            "{label}: dist = {d} needs `range = [low, high]` (only a normal or lognormal may go without)"
+        ));
+    }
     if forms.len() != 1 {
         return Err(format!(
             "{label}: give exactly one of `values`, `linspace`, `logspace`, `range` (found {})",
@@ -117,6 +240,19 @@ pub(super) fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String
     if t.contains_key("scale") && form != "range" {
         return Err(format!("{label}: `scale` goes with `range` only"));
     }
+    if form != "range" && form != "dist" {
+        if let Some(k) = DIST_KEYS.iter().find(|k| t.contains_key(**k)) {
+            return Err(format!(
+                "{label}: `{k}` goes with a `range` axis only (this axis has `{form}`)"
+            ));
+        }
+        if mode == Mode::Saltelli {
+            return Err(format!(
+                "{label}: a saltelli sweep takes only `range` axes of numbers (this axis has `{form}`); give it a `range`, or fix its value in [set]"
+            ));
+        }
+    }
+    let mut marginal = None;
     let values = match form {
         "values" => {
             let arr = t["values"]
@@ -143,41 +279,68 @@ pub(super) fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String
         _ => {
             if matches!(mode, Mode::Grid | Mode::Zip) {
                 return Err(format!(
-                    "{label}: a `range` axis needs sampling mode lhs or sobol (mode is {}); use values, linspace or logspace",
+                    "{label}: a `{form}` axis needs sampling mode lhs or sobol, or saltelli (mode is {}); use values, linspace or logspace",
                     mode.name()
                 ));
             }
-            let r = &t["range"];
-            let arr = r
-                .as_array()
-                .filter(|a| a.len() == 2)
-                .ok_or_else(|| format!("{label}: `range` must be [low, high], got {r}"))?;
-            let (low, high) = match (as_number(&arr[0]), as_number(&arr[1])) {
-                (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a, b),
-                _ => {
-                    return Err(format!(
-                        "{label}: `range` must be two finite numbers, got {r}"
-                    ))
+            let range = match t.get("range") {
+                None => None,
+                Some(r) => {
+                    let arr = r
+                        .as_array()
+                        .filter(|a| a.len() == 2)
+                        .ok_or_else(|| format!("{label}: `range` must be [low, high], got {r}"))?;
+                    let (low, high) = match (as_number(&arr[0]), as_number(&arr[1])) {
+                        (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a, b),
+                        _ => {
+                            return Err(format!(
+                                "{label}: `range` must be two finite numbers, got {r}"
+                            ))
+                        }
+                    };
+                    if low > high {
+                        return Err(format!("{label}: `range` low {low} is above high {high}"));
+                    }
+                    Some((low, high))
                 }
             };
-            if low > high {
-                return Err(format!("{label}: `range` low {low} is above high {high}"));
-            }
-            let log = match t.get("scale") {
-                None => false,
-                Some(Value::String(s)) if s == "linear" => false,
-                Some(Value::String(s)) if s == "log" => true,
-                Some(other) => {
+            let dist_name = t.get("dist").and_then(Value::as_str);
+            let log = match (t.get("scale"), dist_name) {
+                (None, Some("loguniform")) => true,
+                (None, _) => false,
+                (Some(_), Some(d)) if d != "uniform" && d != "loguniform" => {
+                    return Err(format!(
+                        "{label}: `scale` and dist = \"{d}\" do not go together (dist = \"loguniform\" is scale = \"log\")"
+                    ))
+                }
+                (Some(Value::String(s)), d) if s == "linear" => {
+                    if d == Some("loguniform") {
+                        return Err(format!(
+                            "{label}: scale = \"linear\" contradicts dist = \"loguniform\""
+                        ));
+                    }
+                    false
+                }
+                (Some(Value::String(s)), _) if s == "log" => true,
+                (Some(other), _) => {
                     return Err(format!(
                         "{label}: `scale` = {other}: allowed \"linear\" or \"log\""
                     ))
                 }
             };
-            if log && low <= 0.0 {
-                return Err(format!(
-                    "{label}: `scale = \"log\"` needs low > 0, got {low}"
-                ));
+            if let Some((low, _)) = range {
+                if log && low <= 0.0 {
+                    return Err(format!(
+                        "{label}: `scale = \"log\"` (dist = \"loguniform\") needs low > 0, got {low}"
+                    ));
+                }
             }
+            marginal = parse_dist(t, &label, &key, range, base)?;
+            let (low, high) = match (range, marginal) {
+                (Some(r), _) => r,
+                (None, Some(m)) => m.distribution().support(),
+                (None, None) => unreachable!("a range axis without a range has a distribution"),
+            };
             AxisValues::Range { low, high, log }
         }
     };
@@ -211,5 +374,5 @@ pub(super) fn parse_axis(i: usize, v: &Value, mode: Mode) -> Result<Axis, String
             first
         }
     };
-    Ok(Axis { key, values, kind })
+    Ok((Axis { key, values, kind }, marginal))
 }
