@@ -10,6 +10,7 @@
 mod completions;
 mod design;
 mod merge;
+pub mod sensitivity;
 mod simulate;
 mod sweep;
 
@@ -60,6 +61,8 @@ pub enum Command {
     /// Answer a design question: the designs whose searched worst case over the for_all box
     /// meets every limit, the best one, verified.
     Design(design::DesignArgs),
+    /// Sobol indices (S1, ST, S2 with confidence intervals) of a saltelli sweep's outputs.
+    Sensitivity(sensitivity::SensitivityArgs),
     /// Print a shell completion script (e.g. `cushion completions bash > ~/.local/share/bash-completion/completions/cushion`).
     Completions(completions::CompletionsArgs),
 }
@@ -70,6 +73,7 @@ pub fn run(cli: Cli) -> i32 {
         Command::Sweep(a) => sweep::run(a),
         Command::Merge(a) => merge::run(a),
         Command::Design(a) => design::run(a),
+        Command::Sensitivity(a) => sensitivity::run(a),
         Command::Completions(a) => completions::run(a),
     }
 }

@@ -15,6 +15,12 @@ pub enum SensitivityError {
     /// a value is not finite). `output` is the column's position in the slice given.
     #[error("output {output}: {problem}")]
     Output { output: usize, problem: String },
+    /// Runs of the sample did not end `ok`, and the study was told to stop on them.
+    #[error("{0}")]
+    FailedRuns(String),
+    /// A file could not be written or read.
+    #[error("{0}")]
+    Io(String),
 }
 
 /// A [`SensitivityError::Config`] from its three parts.

@@ -9,6 +9,10 @@
 //! - [`analyze`]: SALib's Sobol estimators over many output columns at once, with seeded
 //!   bootstrap intervals, parallel and independent of the thread count.
 //!
+//! Above them, still engine-free, the study layer of `cushion sensitivity` ([`study`], [`chart`]):
+//! a run summary's Arrow columns in, the failed runs dealt with, the long table (Parquet, CSV)
+//! and its SVG chart out.
+//!
 //! # The sample
 //!
 //! `D` inputs, `N` base points. Base point `i` is point `i` of an Owen-scrambled Sobol sequence
@@ -69,13 +73,16 @@
 //! - M. J. Wichura (1988), "Algorithm AS 241: The percentage points of the normal
 //!   distribution", Applied Statistics 37, 477-484 (`Φ⁻¹`, see [`normal`]).
 
+pub mod chart;
 pub mod distribution;
 pub mod error;
 pub mod normal;
 pub mod saltelli;
 pub mod sobol;
+pub mod study;
 
 pub use distribution::{Distribution, Domain, Marginal};
 pub use error::SensitivityError;
 pub use saltelli::{block_len, RowKind, SaltelliSample};
 pub use sobol::{analyze, Estimate, PairEstimate, Sensitivity, SobolIndices, SobolOptions};
+pub use study::{run_study, Finding, OnFailed, Study, StudyOptions};

@@ -1,0 +1,566 @@
+//! A study: the analysis of a run summary's columns, as `cushion sensitivity` and
+//! `cushion.sensitivity` do it. Engine-free: the summary (Arrow record batches with a `run`
+//! column, a `status` column, one column per input and the outputs) comes from whoever ran the
+//! sample; this module picks the outputs, deals with the runs that did not end `ok`, calls
+//! [`analyze`], and lays the answer out as a long table (written as Parquet and CSV; the chart
+//! is in [`crate::chart`]).
+//!
+//! The long table has one row per index: `output`, `input` (for `S1` and `ST`), `input_1` and
+//! `input_2` (for `S2`), `index` (`S1`, `ST`, `S2`; `constant` for an output that takes one
+//! value on every run, `value` being that value; `not_finite` for an output missing or not
+//! finite on some runs, `value` being how many), `value` and `conf` (the half-width of the
+//! interval; empty for `constant` and `not_finite`).
+
+use std::io::Write;
+use std::path::Path;
+use std::sync::Arc;
+use std::time::Instant;
+
+use arrow_array::builder::{Float64Builder, StringBuilder};
+use arrow_array::{
+    Array, ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray,
+};
+use arrow_schema::{DataType, Field, Schema};
+
+use crate::error::{config, SensitivityError};
+use crate::saltelli::SaltelliSample;
+use crate::sobol::{analyze, Sensitivity, SobolOptions};
+
+/// What to do with runs that did not end `ok`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnFailed {
+    /// Stop, naming how many runs failed and for which inputs (default).
+    Stop,
+    /// Drop the whole block of each base point that holds a failed run, and say how many.
+    DropBasePoint,
+}
+
+/// The `[sensitivity]` table of a sweep file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudyOptions {
+    /// The outputs to analyse (default: every numeric summary column).
+    pub outputs: Option<Vec<String>>,
+    pub resamples: usize,
+    pub conf_level: f64,
+    /// Seeds the bootstrap.
+    pub seed: u64,
+    pub on_failed: OnFailed,
+}
+
+impl Default for StudyOptions {
+    fn default() -> Self {
+        StudyOptions {
+            outputs: None,
+            resamples: 1000,
+            conf_level: 0.95,
+            seed: 0,
+            on_failed: OnFailed::Stop,
+        }
+    }
+}
+
+/// The keys of `[sensitivity]`.
+pub const STUDY_KEYS: &[&str] = &["outputs", "resamples", "conf_level", "seed", "on_failed"];
+
+impl StudyOptions {
+    /// Read a `[sensitivity]` table (absent: the defaults). Errors name the key, the value and
+    /// what is allowed.
+    pub fn from_table(table: Option<&toml::Table>) -> Result<StudyOptions, SensitivityError> {
+        let mut o = StudyOptions::default();
+        let Some(t) = table else {
+            return Ok(o);
+        };
+        for k in t.keys() {
+            if !STUDY_KEYS.contains(&k.as_str()) {
+                return Err(config(
+                    "[sensitivity]",
+                    format!("`{k}`"),
+                    format!("unknown key (allowed: {})", STUDY_KEYS.join(", ")),
+                ));
+            }
+        }
+        if let Some(v) = t.get("outputs") {
+            let list = v
+                .as_array()
+                .and_then(|a| {
+                    a.iter()
+                        .map(|x| x.as_str().map(str::to_string))
+                        .collect::<Option<Vec<String>>>()
+                })
+                .filter(|a| !a.is_empty())
+                .ok_or_else(|| {
+                    config(
+                        "[sensitivity] outputs",
+                        v,
+                        "must be a non-empty list of summary field names",
+                    )
+                })?;
+            o.outputs = Some(list);
+        }
+        if let Some(v) = t.get("resamples") {
+            o.resamples = match v.as_integer() {
+                Some(n) if (2..=1_000_000).contains(&n) => n as usize,
+                _ => {
+                    return Err(config(
+                        "[sensitivity] resamples",
+                        v,
+                        "must be an integer from 2 to 1000000",
+                    ))
+                }
+            };
+        }
+        if let Some(v) = t.get("conf_level") {
+            o.conf_level = match v.as_float() {
+                Some(x) if x > 0.0 && x < 1.0 => x,
+                _ => {
+                    return Err(config(
+                        "[sensitivity] conf_level",
+                        v,
+                        "must be a number strictly between 0 and 1 (e.g. 0.95)",
+                    ))
+                }
+            };
+        }
+        if let Some(v) = t.get("seed") {
+            o.seed = match v.as_integer() {
+                Some(n) if n >= 0 => n as u64,
+                _ => {
+                    return Err(config(
+                        "[sensitivity] seed",
+                        v,
+                        "must be an integer >= 0",
+                    ))
+                }
+            };
+        }
+        if let Some(v) = t.get("on_failed") {
+            o.on_failed = match v.as_str() {
+                Some("stop") => OnFailed::Stop,
+                Some("drop_base_point") => OnFailed::DropBasePoint,
+                _ => {
+                    return Err(config(
+                        "[sensitivity] on_failed",
+                        v,
+                        "allowed \"stop\" or \"drop_base_point\"",
+                    ))
+                }
+            };
+        }
+        Ok(o)
+    }
+}
+
+/// The numeric columns of a summary (floats, integers, booleans as 0/1) that are outputs: all
+/// but `run` and the inputs.
+pub fn numeric_outputs(schema: &Schema, inputs: &[String]) -> Vec<String> {
+    schema
+        .fields()
+        .iter()
+        .filter(|f| {
+            matches!(
+                f.data_type(),
+                DataType::Float64 | DataType::Int64 | DataType::Boolean
+            )
+        })
+        .map(|f| f.name().clone())
+        .filter(|n| n != "run" && !inputs.contains(n))
+        .collect()
+}
+
+/// The outputs to analyse: `requested` (each checked against the summary's numeric outputs), or
+/// every numeric output.
+pub fn resolve_outputs(
+    schema: &Schema,
+    inputs: &[String],
+    requested: Option<&[String]>,
+) -> Result<Vec<String>, SensitivityError> {
+    let all = numeric_outputs(schema, inputs);
+    let Some(req) = requested else {
+        return Ok(all);
+    };
+    for (i, name) in req.iter().enumerate() {
+        if !all.contains(name) {
+            return Err(config(
+                "[sensitivity] outputs",
+                format!("{name:?}"),
+                format!(
+                    "not a numeric summary field (allowed: {})",
+                    all.join(", ")
+                ),
+            ));
+        }
+        if req[..i].contains(name) {
+            return Err(config(
+                "[sensitivity] outputs",
+                format!("{name:?}"),
+                "listed twice",
+            ));
+        }
+    }
+    Ok(req.to_vec())
+}
+
+/// What the study says of one output.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Finding {
+    /// The estimator's answer (indices, or a constant output).
+    Sensitivity(Sensitivity),
+    /// The output is missing or not finite on this many of the analysed runs: no index.
+    NotFinite { runs: usize },
+}
+
+/// A finished study.
+#[derive(Clone, Debug)]
+pub struct Study {
+    pub inputs: Vec<String>,
+    pub outputs: Vec<String>,
+    /// One per output, in order.
+    pub findings: Vec<Finding>,
+    pub second_order: bool,
+    pub conf_level: f64,
+    /// Base points in the sample, and those analysed (fewer when some were dropped).
+    pub base_points: usize,
+    pub base_points_used: usize,
+    /// Runs that did not end `ok`.
+    pub failed_runs: usize,
+    /// Seconds spent gathering the columns and estimating (not running the sample).
+    pub analysis_seconds: f64,
+}
+
+impl Study {
+    /// Base points dropped for holding a failed run.
+    pub fn dropped_base_points(&self) -> usize {
+        self.base_points - self.base_points_used
+    }
+}
+
+fn column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a ArrayRef, SensitivityError> {
+    batch
+        .column_by_name(name)
+        .ok_or_else(|| config("summary", format!("no column `{name}`"), "a run summary has it"))
+}
+
+/// The values of a numeric column as floats (booleans as 0 and 1, a missing value NaN).
+fn floats(a: &ArrayRef, out: &mut Vec<f64>) {
+    if let Some(f) = a.as_any().downcast_ref::<Float64Array>() {
+        out.extend((0..f.len()).map(|i| if f.is_null(i) { f64::NAN } else { f.value(i) }));
+    } else if let Some(n) = a.as_any().downcast_ref::<Int64Array>() {
+        out.extend((0..n.len()).map(|i| {
+            if n.is_null(i) {
+                f64::NAN
+            } else {
+                n.value(i) as f64
+            }
+        }));
+    } else if let Some(b) = a.as_any().downcast_ref::<BooleanArray>() {
+        out.extend((0..b.len()).map(|i| {
+            if b.is_null(i) {
+                f64::NAN
+            } else if b.value(i) {
+                1.0
+            } else {
+                0.0
+            }
+        }));
+    } else {
+        out.extend(std::iter::repeat_n(f64::NAN, a.len()));
+    }
+}
+
+/// A numeric column over every batch, as floats.
+fn gather(batches: &[RecordBatch], name: &str) -> Result<Vec<f64>, SensitivityError> {
+    let mut out = Vec::new();
+    for b in batches {
+        floats(column(b, name)?, &mut out);
+    }
+    Ok(out)
+}
+
+/// How many failed runs a message lists by their inputs.
+const LIST_FAILED: usize = 5;
+
+/// Analyse the outputs of a Saltelli sample: `batches` hold its summary, one row per run in run
+/// order (`run` 0, 1, ..); `inputs` name its input columns in the sample's order. Runs on the
+/// current rayon pool; the answer does not depend on the thread count.
+pub fn run_study(
+    batches: &[RecordBatch],
+    inputs: &[String],
+    sample: &SaltelliSample,
+    outputs: &[String],
+    opts: &StudyOptions,
+) -> Result<Study, SensitivityError> {
+    let n_rows: usize = batches.iter().map(|b| b.num_rows()).sum();
+    if n_rows as u64 != sample.n_rows() {
+        return Err(config(
+            "summary",
+            format!("{n_rows} rows"),
+            format!("the saltelli sample has {} runs", sample.n_rows()),
+        ));
+    }
+    let runs = gather(batches, "run")?;
+    if let Some(i) = runs.iter().enumerate().position(|(i, r)| *r != i as f64) {
+        return Err(config(
+            "summary",
+            format!("row {i} holds run {}", runs[i]),
+            "the rows must be the runs in order (a whole sweep, not a shard)",
+        ));
+    }
+    let block = sample.block();
+    let mut status: Vec<Option<String>> = Vec::with_capacity(n_rows);
+    for b in batches {
+        let a = column(b, "status")?;
+        let s = a
+            .as_any()
+            .downcast_ref::<StringArray>()
+            .ok_or_else(|| config("summary", "column `status`", "must be text"))?;
+        status.extend(s.iter().map(|x| x.map(str::to_string)));
+    }
+    let failed: Vec<usize> = (0..n_rows)
+        .filter(|&i| status[i].as_deref() != Some("ok"))
+        .collect();
+    let mut keep = vec![true; sample.n_base()];
+    if !failed.is_empty() {
+        match opts.on_failed {
+            OnFailed::Stop => {
+                let input_cols: Vec<Vec<f64>> = inputs
+                    .iter()
+                    .map(|k| gather(batches, k))
+                    .collect::<Result<_, _>>()?;
+                let listed: Vec<String> = failed
+                    .iter()
+                    .take(LIST_FAILED)
+                    .map(|&r| {
+                        let point: Vec<String> = inputs
+                            .iter()
+                            .zip(&input_cols)
+                            .map(|(k, c)| format!("{k} = {}", c[r]))
+                            .collect();
+                        format!(
+                            "run {r} ({}): {}",
+                            point.join(", "),
+                            status[r].as_deref().unwrap_or("no status")
+                        )
+                    })
+                    .collect();
+                return Err(SensitivityError::FailedRuns(format!(
+                    "{} of {n_rows} runs did not end ok, so no index would be honest: {}{}. Set [sensitivity] on_failed = \"drop_base_point\" to analyse without their base points",
+                    failed.len(),
+                    listed.join("; "),
+                    if failed.len() > LIST_FAILED { "; ..." } else { "" }
+                )));
+            }
+            OnFailed::DropBasePoint => {
+                for &r in &failed {
+                    keep[r / block] = false;
+                }
+            }
+        }
+    }
+    let used: Vec<usize> = (0..sample.n_base()).filter(|&i| keep[i]).collect();
+    if used.is_empty() {
+        return Err(SensitivityError::FailedRuns(format!(
+            "{} of {n_rows} runs did not end ok, and every base point holds one: nothing is left to analyse",
+            failed.len()
+        )));
+    }
+
+    let started = Instant::now();
+    let mut findings: Vec<Option<Finding>> = vec![None; outputs.len()];
+    let mut columns: Vec<Vec<f64>> = Vec::new();
+    let mut analysed: Vec<usize> = Vec::new();
+    for (o, name) in outputs.iter().enumerate() {
+        let all = gather(batches, name)?;
+        let mut kept = Vec::with_capacity(used.len() * block);
+        for &i in &used {
+            kept.extend_from_slice(&all[i * block..(i + 1) * block]);
+        }
+        let bad = kept.iter().filter(|x| !x.is_finite()).count();
+        if bad > 0 {
+            findings[o] = Some(Finding::NotFinite { runs: bad });
+        } else {
+            columns.push(kept);
+            analysed.push(o);
+        }
+    }
+    let refs: Vec<&[f64]> = columns.iter().map(|c| c.as_slice()).collect();
+    let sobol = SobolOptions {
+        second_order: sample.second_order(),
+        resamples: opts.resamples,
+        conf_level: opts.conf_level,
+        seed: opts.seed,
+    };
+    let results = analyze(sample.n_inputs(), &refs, &sobol).map_err(|e| match e {
+        SensitivityError::Output { output, problem } => SensitivityError::Output {
+            output: analysed[output],
+            problem: format!("{}: {problem}", outputs[analysed[output]]),
+        },
+        other => other,
+    })?;
+    for (o, r) in analysed.into_iter().zip(results) {
+        findings[o] = Some(Finding::Sensitivity(r));
+    }
+    Ok(Study {
+        inputs: inputs.to_vec(),
+        outputs: outputs.to_vec(),
+        findings: findings.into_iter().map(|f| f.expect("every output has a finding")).collect(),
+        second_order: sample.second_order(),
+        conf_level: opts.conf_level,
+        base_points: sample.n_base(),
+        base_points_used: used.len(),
+        failed_runs: failed.len(),
+        analysis_seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The columns of the long table.
+pub fn long_schema() -> Arc<Schema> {
+    Arc::new(Schema::new(vec![
+        Field::new("output", DataType::Utf8, false),
+        Field::new("input", DataType::Utf8, true),
+        Field::new("input_1", DataType::Utf8, true),
+        Field::new("input_2", DataType::Utf8, true),
+        Field::new("index", DataType::Utf8, false),
+        Field::new("value", DataType::Float64, false),
+        Field::new("conf", DataType::Float64, true),
+    ]))
+}
+
+/// The study as a long table: per output, `S1` and `ST` of each input, then `S2` of each pair
+/// (with second order); or one `constant` or `not_finite` row.
+pub fn long_table(study: &Study) -> RecordBatch {
+    let mut output = StringBuilder::new();
+    let mut input = StringBuilder::new();
+    let mut input_1 = StringBuilder::new();
+    let mut input_2 = StringBuilder::new();
+    let mut index = StringBuilder::new();
+    let mut value = Float64Builder::new();
+    let mut conf = Float64Builder::new();
+    let mut row = |o: &str,
+                   single: Option<&str>,
+                   pair: Option<(&str, &str)>,
+                   idx: &str,
+                   v: f64,
+                   c: Option<f64>| {
+        output.append_value(o);
+        input.append_option(single);
+        input_1.append_option(pair.map(|p| p.0));
+        input_2.append_option(pair.map(|p| p.1));
+        index.append_value(idx);
+        value.append_value(v);
+        conf.append_option(c);
+    };
+    for (name, f) in study.outputs.iter().zip(&study.findings) {
+        match f {
+            Finding::NotFinite { runs } => row(name, None, None, "not_finite", *runs as f64, None),
+            Finding::Sensitivity(Sensitivity::Constant { value }) => {
+                row(name, None, None, "constant", *value, None)
+            }
+            Finding::Sensitivity(Sensitivity::Indices(s)) => {
+                for (j, e) in s.s1.iter().enumerate() {
+                    row(name, Some(&study.inputs[j]), None, "S1", e.value, Some(e.conf));
+                }
+                for (j, e) in s.st.iter().enumerate() {
+                    row(name, Some(&study.inputs[j]), None, "ST", e.value, Some(e.conf));
+                }
+                for p in &s.s2 {
+                    let pair = (study.inputs[p.j].as_str(), study.inputs[p.k].as_str());
+                    row(name, None, Some(pair), "S2", p.value, Some(p.conf));
+                }
+            }
+        }
+    }
+    let columns: Vec<ArrayRef> = vec![
+        Arc::new(output.finish()),
+        Arc::new(input.finish()),
+        Arc::new(input_1.finish()),
+        Arc::new(input_2.finish()),
+        Arc::new(index.finish()),
+        Arc::new(value.finish()),
+        Arc::new(conf.finish()),
+    ];
+    RecordBatch::try_new(long_schema(), columns).expect("the long table's columns fit its schema")
+}
+
+fn io(path: &Path, e: impl std::fmt::Display) -> SensitivityError {
+    SensitivityError::Io(format!("{}: {e}", path.display()))
+}
+
+/// Write `bytes` to `path` through a temporary file in the same folder and a rename, so a
+/// reader never sees half a file.
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), SensitivityError> {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let tmp = path.with_file_name(format!(".{name}.tmp-{}", std::process::id()));
+    let write = || -> std::io::Result<()> {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    };
+    write().map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io(path, e)
+    })
+}
+
+/// The long table as Parquet.
+pub fn parquet_bytes(table: &RecordBatch) -> Result<Vec<u8>, String> {
+    let mut buf = Vec::new();
+    let mut w = parquet::arrow::ArrowWriter::try_new(&mut buf, table.schema(), None)
+        .map_err(|e| e.to_string())?;
+    w.write(table).map_err(|e| e.to_string())?;
+    w.close().map_err(|e| e.to_string())?;
+    Ok(buf)
+}
+
+/// The long table as CSV: a header, one line per row; floats in Rust's shortest round-trip
+/// form, an empty field for a missing value.
+pub fn csv_text(table: &RecordBatch) -> String {
+    let mut s = String::new();
+    let schema = table.schema();
+    let names: Vec<&str> = schema.fields().iter().map(|f| f.name().as_str()).collect();
+    s.push_str(&names.join(","));
+    s.push('\n');
+    for r in 0..table.num_rows() {
+        let cells: Vec<String> = table
+            .columns()
+            .iter()
+            .map(|c| {
+                if c.is_null(r) {
+                    String::new()
+                } else if let Some(a) = c.as_any().downcast_ref::<StringArray>() {
+                    let v = a.value(r);
+                    if v.contains([',', '"', '\n']) {
+                        format!("\"{}\"", v.replace('"', "\"\""))
+                    } else {
+                        v.to_string()
+                    }
+                } else if let Some(a) = c.as_any().downcast_ref::<Float64Array>() {
+                    format!("{}", a.value(r))
+                } else {
+                    String::new()
+                }
+            })
+            .collect();
+        s.push_str(&cells.join(","));
+        s.push('\n');
+    }
+    s
+}
+
+/// The study's files in `dir`: `sensitivity.parquet`, `sensitivity.csv` and
+/// `sensitivity.svg` (the chart is best effort: its error comes back as a warning).
+pub fn write_study(dir: &Path, study: &Study) -> Result<Vec<String>, SensitivityError> {
+    let table = long_table(study);
+    let p = dir.join("sensitivity.parquet");
+    let bytes = parquet_bytes(&table).map_err(|e| io(&p, e))?;
+    write_atomic(&p, &bytes)?;
+    write_atomic(&dir.join("sensitivity.csv"), csv_text(&table).as_bytes())?;
+    let mut warnings = Vec::new();
+    if let Err(e) = crate::chart::write_chart(&dir.join("sensitivity.svg"), study) {
+        warnings.push(format!("sensitivity.svg not written: {e}"));
+    }
+    Ok(warnings)
+}
+
+/// The files [`write_study`] writes.
+pub const STUDY_FILES: &[&str] = &["sensitivity.parquet", "sensitivity.csv", "sensitivity.svg"];
