@@ -11,6 +11,7 @@ as in scene files, ``cushion simulate --set`` and sweep axes; :func:`keys` lists
 >>> run.summary["object_final_velocity"]          # m/s
 >>> frame = cushion.sweep("sweeps/paper.toml")    # one row per run
 >>> answer = cushion.design("sweeps/design-question.toml")   # which design is safe?
+>>> indices = cushion.sensitivity("sweeps/sensitivity.toml")   # which input drives what?
 
 Bad input raises :class:`ConfigError` (a :class:`ValueError`) naming the key, the value and
 what is allowed; a file that cannot be read, Python's own :class:`FileNotFoundError` (or another
@@ -22,6 +23,7 @@ from ._cushion import ConfigError, Scene, __version__
 from ._design import Design, design
 from ._run import Run, read_mcap, simulate
 from ._scene import defaults, keys, load_scene
+from ._sensitivity import sensitivity
 from ._sweep import sweep
 
 __all__ = [
@@ -35,6 +37,7 @@ __all__ = [
     "keys",
     "load_scene",
     "read_mcap",
+    "sensitivity",
     "simulate",
     "sweep",
 ]

@@ -21,6 +21,7 @@ __all__ = [
     "simulate",
     "sweep",
     "design",
+    "sensitivity",
     "resolve_sweep",
     "sweep_runs",
     "read_mcap",
@@ -90,6 +91,16 @@ def design(
     progress: Callable[[int, int], None] | None = None,
     git_commit: str | None = None,
 ) -> DesignAnswer: ...
+def sensitivity(
+    config: str | dict[str, Any],
+    outputs: list[str] | None = None,
+    threads: int | None = None,
+    out: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    git_commit: str | None = None,
+) -> bytes:
+    """The long table of Sobol indices (sensitivity.parquet's columns) as an Arrow IPC stream."""
+
 def resolve_sweep(config: str | dict[str, Any]) -> tuple[str, int]:
     """The sweep as self-contained TOML text, and its run count."""
 

@@ -12,6 +12,7 @@ mod design;
 mod errors;
 mod mcap_read;
 mod scene;
+mod sensitivity;
 mod simulate;
 mod sweep;
 
@@ -39,6 +40,7 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulate::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep, m)?)?;
     m.add_function(wrap_pyfunction!(design::design, m)?)?;
+    m.add_function(wrap_pyfunction!(sensitivity::sensitivity, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::resolve_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::sweep_runs, m)?)?;
     m.add_function(wrap_pyfunction!(mcap_read::read_mcap, m)?)?;

@@ -12,6 +12,8 @@
 ...                      "hydraulic.orifice_radius")
 >>> answer = cushion.design("sweeps/design-question.toml")
 >>> cushion.plot.design_map(answer, path="design-map.png")   # the feasible region
+>>> frame = cushion.sensitivity("sweeps/sensitivity.toml")
+>>> cushion.plot.sensitivity(frame, path="sensitivity.png")   # S1, ST, S2
 
 Every function returns the :class:`matplotlib.figure.Figure` it drew on and writes it to
 ``path`` when given (the format follows the file's extension: ``.png``, ``.svg``, ``.pdf``).
@@ -49,6 +51,7 @@ _choose_backend()
 
 from ._runs import compare, marks, run  # noqa: E402  (after the backend is settled)
 from ._design import design_map  # noqa: E402
+from ._sensitivity import sensitivity  # noqa: E402
 from ._sweeps import heatmap, metric_vs_axis  # noqa: E402
 from ._units import AXES, METRICS, MODULE_COLORS, Quantity, label, quantity  # noqa: E402
 
@@ -65,4 +68,5 @@ __all__ = [
     "metric_vs_axis",
     "heatmap",
     "design_map",
+    "sensitivity",
 ]

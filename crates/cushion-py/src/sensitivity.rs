@@ -1,0 +1,99 @@
+//! Sensitivity studies from Python: `cushion.sensitivity(config)` runs a saltelli sweep (a file
+//! path or a dict of the file's shape) through the same engine and analysis as `cushion
+//! sensitivity`, with the GIL released and Ctrl-C looked for between runs (as `sweep` and
+//! `design` do), and hands back the long table as an Arrow IPC stream. With `out`, every file
+//! of the command is written there too.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+use cushion_cli::sensitivity::{prepare, run_in_memory, run_to_folder, Failure};
+use cushion_sensitivity::study::long_table;
+use cushion_sweep::{Hooks, SweepFile, SweepOptions};
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict, PyString};
+
+use crate::convert::to_table;
+use crate::errors::{config_error, read_file, sweep_error};
+use crate::sweep::{ipc_bytes, run_detached};
+
+/// The sweep a user gave: a path to a sweep file, or a dict of the same shape.
+fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
+    if let Ok(p) = config.cast::<PyString>() {
+        let path = Path::new(p.to_str()?);
+        read_file(path)?;
+        return SweepFile::from_file(path).map_err(config_error);
+    }
+    if let Ok(d) = config.cast::<PyDict>() {
+        let mut table = to_table("", d)?;
+        table
+            .entry("name")
+            .or_insert_with(|| toml::Value::String("sensitivity".into()));
+        let text = toml::to_string(&table)
+            .map_err(|e| config_error(format!("sweep config: cannot be written as TOML: {e}")))?;
+        // A relative `scene` path is taken from the working folder.
+        return SweepFile::from_str_at(&text, Path::new("<dict>"))
+            .map_err(|e| config_error(format!("sweep config: {e}")));
+    }
+    Err(config_error(format!(
+        "config = {}: expected a path to a sweep file (TOML) or a dict of the same shape",
+        config.repr()?
+    )))
+}
+
+/// Run a saltelli sweep and analyse it: the long table (the columns of `sensitivity.parquet`)
+/// as an Arrow IPC stream. `outputs` overrides `[sensitivity] outputs`.
+#[pyfunction]
+#[pyo3(signature = (config, outputs=None, threads=None, out=None, progress=None, git_commit=None))]
+pub fn sensitivity<'py>(
+    py: Python<'py>,
+    config: &Bound<'py, PyAny>,
+    outputs: Option<Vec<String>>,
+    threads: Option<usize>,
+    out: Option<PathBuf>,
+    progress: Option<&Bound<'py, PyAny>>,
+    git_commit: Option<String>,
+) -> PyResult<Bound<'py, PyBytes>> {
+    let sweep = sweep_from(config)?;
+    if threads == Some(0) {
+        return Err(config_error(
+            "threads = 0: must be at least 1 (or None for every core)",
+        ));
+    }
+    let prep = prepare(sweep, outputs).map_err(sweep_error)?;
+    let cancel = AtomicBool::new(false);
+    let counts = (AtomicU64::new(0), AtomicU64::new(0));
+    let on_progress = |done: u64, total: u64| {
+        counts.0.store(done, Ordering::Relaxed);
+        counts.1.store(total, Ordering::Relaxed);
+    };
+    let hooks = Hooks {
+        progress: Some(&on_progress),
+        cancel: Some(&cancel),
+        chunk_written: None,
+    };
+    // A failed-runs stop is not an error of the sweep: it comes back as the inner result.
+    let study = run_detached(py, &cancel, &counts, progress, || {
+        let done = match out {
+            None => run_in_memory(prep, threads, &hooks),
+            Some(dir) => {
+                let opts = SweepOptions {
+                    out: Some(dir),
+                    threads,
+                    resume: false,
+                    shard: None,
+                    git_commit,
+                };
+                run_to_folder(prep, &opts, &hooks).map(|(_, study, _)| study)
+            }
+        };
+        match done {
+            Ok(study) => Ok(Ok(study)),
+            Err(Failure::Sweep(e)) => Err(e),
+            Err(Failure::FailedRuns(m)) => Ok(Err(m)),
+        }
+    })?
+    .map_err(pyo3::exceptions::PyRuntimeError::new_err)?;
+    let table = long_table(&study);
+    ipc_bytes(py, std::slice::from_ref(&table), table.schema())
+}
