@@ -70,11 +70,11 @@ impl StudyOptions {
         let Some(t) = table else {
             return Ok(o);
         };
-        for k in t.keys() {
+        for (k, v) in t {
             if !STUDY_KEYS.contains(&k.as_str()) {
                 return Err(config(
-                    "[sensitivity]",
-                    format!("`{k}`"),
+                    format!("[sensitivity] {k}"),
+                    v,
                     format!("unknown key (allowed: {})", STUDY_KEYS.join(", ")),
                 ));
             }
@@ -564,3 +564,121 @@ pub fn write_study(dir: &Path, study: &Study) -> Result<Vec<String>, Sensitivity
 
 /// The files [`write_study`] writes.
 pub const STUDY_FILES: &[&str] = &["sensitivity.parquet", "sensitivity.csv", "sensitivity.svg"];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A summary of the 2-input, 8-base-point sample (no second order: 32 rows) with the output
+    /// `y = a + 2 b²`, and `status` not ok on the rows in `failed`.
+    fn summary(sample: &SaltelliSample, failed: &[usize]) -> (RecordBatch, Vec<f64>) {
+        let n = sample.n_rows() as usize;
+        let pts: Vec<Vec<f64>> = (0..n as u64).map(|r| sample.unit_point(r)).collect();
+        let y: Vec<f64> = pts.iter().map(|p| p[0] + 2.0 * p[1] * p[1]).collect();
+        let status: Vec<&str> = (0..n)
+            .map(|r| if failed.contains(&r) { "max_steps" } else { "ok" })
+            .collect();
+        let schema = Arc::new(Schema::new(vec![
+            Field::new("run", DataType::Int64, false),
+            Field::new("a", DataType::Float64, false),
+            Field::new("b", DataType::Float64, false),
+            Field::new("status", DataType::Utf8, false),
+            Field::new("y", DataType::Float64, true),
+            Field::new("flag", DataType::Boolean, true),
+        ]));
+        let cols: Vec<ArrayRef> = vec![
+            Arc::new(Int64Array::from((0..n as i64).collect::<Vec<_>>())),
+            Arc::new(Float64Array::from(pts.iter().map(|p| p[0]).collect::<Vec<_>>())),
+            Arc::new(Float64Array::from(pts.iter().map(|p| p[1]).collect::<Vec<_>>())),
+            Arc::new(StringArray::from(status)),
+            Arc::new(Float64Array::from(y.clone())),
+            Arc::new(BooleanArray::from(vec![false; n])),
+        ];
+        (RecordBatch::try_new(schema, cols).unwrap(), y)
+    }
+
+    fn inputs() -> Vec<String> {
+        vec!["a".into(), "b".into()]
+    }
+
+    #[test]
+    fn outputs_are_the_numeric_columns_but_run_and_the_inputs() {
+        let s = SaltelliSample::new(2, 8, false, 0).unwrap();
+        let (b, _) = summary(&s, &[]);
+        assert_eq!(numeric_outputs(&b.schema(), &inputs()), ["y", "flag"]);
+        let e = resolve_outputs(&b.schema(), &inputs(), Some(&["z".to_string()])).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "[sensitivity] outputs = \"z\": not a numeric summary field (allowed: y, flag)"
+        );
+    }
+
+    #[test]
+    fn failed_runs_stop_or_drop_their_base_points() {
+        let s = SaltelliSample::new(2, 8, false, 0).unwrap();
+        let (b, y) = summary(&s, &[5, 30]);
+        let outputs = vec!["y".to_string(), "flag".to_string()];
+        let mut opts = StudyOptions {
+            resamples: 20,
+            ..StudyOptions::default()
+        };
+        let e = run_study(std::slice::from_ref(&b), &inputs(), &s, &outputs, &opts).unwrap_err();
+        let msg = e.to_string();
+        assert!(msg.starts_with("2 of 32 runs did not end ok"), "{msg}");
+        assert!(msg.contains("run 5 (a = ") && msg.contains("): max_steps; run 30 ("), "{msg}");
+
+        opts.on_failed = OnFailed::DropBasePoint;
+        let st = run_study(std::slice::from_ref(&b), &inputs(), &s, &outputs, &opts).unwrap();
+        // Rows 5 and 30 lie in the blocks of base points 1 and 7 (4 rows each).
+        assert_eq!((st.base_points_used, st.dropped_base_points(), st.failed_runs), (6, 2, 2));
+        let kept: Vec<f64> = (0..8)
+            .filter(|i| *i != 1 && *i != 7)
+            .flat_map(|i| y[i * 4..(i + 1) * 4].to_vec())
+            .collect();
+        let sobol = SobolOptions {
+            second_order: false,
+            resamples: 20,
+            conf_level: 0.95,
+            seed: 0,
+        };
+        let want = analyze(2, &[&kept], &sobol).unwrap();
+        assert_eq!(st.findings[0], Finding::Sensitivity(want[0].clone()));
+        assert_eq!(
+            st.findings[1],
+            Finding::Sensitivity(Sensitivity::Constant { value: 0.0 })
+        );
+        let t = long_table(&st);
+        // y: S1 and ST of a and b; flag: one constant row.
+        assert_eq!(t.num_rows(), 5);
+        let csv = csv_text(&t);
+        assert!(csv.ends_with("flag,,,,constant,0,\n"), "{csv}");
+    }
+
+    #[test]
+    fn the_sensitivity_table_is_checked() {
+        let t: toml::Table = "outputs = [\"y\"]\nresamples = 50\nconf_level = 0.9\nseed = 4\non_failed = \"drop_base_point\"\n".parse().unwrap();
+        let o = StudyOptions::from_table(Some(&t)).unwrap();
+        assert_eq!(
+            o,
+            StudyOptions {
+                outputs: Some(vec!["y".into()]),
+                resamples: 50,
+                conf_level: 0.9,
+                seed: 4,
+                on_failed: OnFailed::DropBasePoint
+            }
+        );
+        for (text, want) in [
+            ("outputs = []", "[sensitivity] outputs = []: must be a non-empty list"),
+            ("resamples = 1", "[sensitivity] resamples = 1: must be an integer from 2"),
+            ("conf_level = 1.0", "[sensitivity] conf_level = 1.0: must be a number strictly"),
+            ("seed = -1", "[sensitivity] seed = -1: must be an integer >= 0"),
+            ("on_failed = \"skip\"", "[sensitivity] on_failed = \"skip\": allowed"),
+            ("resampels = 3", "[sensitivity] resampels = 3: unknown key"),
+        ] {
+            let t: toml::Table = text.parse().unwrap();
+            let e = StudyOptions::from_table(Some(&t)).unwrap_err().to_string();
+            assert!(e.starts_with(want), "{text}: {e}");
+        }
+    }
+}
