@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 
 use crate::axes::Axes;
-use crate::climb::{Climb, Coord, Rules};
+use crate::climb::{Climb, Coord, Rules, PROBE_HALVINGS};
 use crate::grid::Grid;
 use crate::metrics::{failed, Target, Worst};
 use crate::worst_case::{SearchSettings, WorstCases};
@@ -116,6 +116,7 @@ impl PointSearch {
             tolerance: s.settings.tolerance,
             min_step: s.settings.min_step,
             max_polls: s.settings.max_polls,
+            probe_halvings: PROBE_HALVINGS,
         };
         for c in climbs.iter_mut() {
             let target = c.target;
