@@ -52,8 +52,10 @@ QUESTIONS = {
         "for_all": [MASS, DEAD_TIME],
         "limit": [FORCE, SPEED],
     },
-    # the dead time as a design axis: the longest dead time each gas pressure allows
+    # the dead time as a design axis: the longest dead time each gas pressure allows (with an
+    # 8.5 mm orifice, inside the first question's feasible band)
     "gas pressure x dead time": {
+        "set": {"hydraulic.orifice_radius": 0.0085},
         "design": [GAS, {"key": "robot.dead_time", "range": [0.0, 0.1]}],
         "for_all": [MASS, {"key": "robot.approach_speed", "range": [0.5, 1.0]}],
         "limit": [FORCE, SPEED],
@@ -63,7 +65,7 @@ QUESTIONS = {
 
 def question(name: str) -> dict:
     q = dict(QUESTIONS[name])
-    q.update({"name": re.sub(r"\W+", "-", name), "scene": SCENE, "set": {"solver.rtol": 1e-6}})
+    q.update({"name": re.sub(r"\W+", "-", name), "scene": SCENE, "set": {"solver.rtol": 1e-6, **q.get("set", {})}})
     return q
 
 
