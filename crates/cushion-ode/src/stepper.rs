@@ -48,6 +48,9 @@ pub struct Switch {
     pub to: Method,
     /// When the run of steps that decided it began.
     pub since: f64,
+    /// The new method is the one for stiff problems, taken because the steps were held by
+    /// stability: the run counts as stiff from `since` ([`Stats::stiff`]).
+    pub to_stiff: bool,
     /// The largest next step the new method may take (infinite: no bound).
     pub h_max: f64,
 }
