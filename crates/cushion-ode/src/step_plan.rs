@@ -10,6 +10,7 @@ use crate::dense::DenseOutput;
 use crate::kinks::KinkForecast;
 use crate::options::SolverOptions;
 use crate::restart_steps::RestartSteps;
+use crate::stepper::Stepper;
 use crate::system::{Control, OdeSystem};
 use crate::State;
 
@@ -28,6 +29,27 @@ const MAX_FORECAST_STEPS: u32 = 3;
 /// A step landing on a time stop (or the end) when it would otherwise end within this factor
 /// of its size before it: stretched a little rather than leaving a sliver.
 const STRETCH: f64 = 1.01;
+
+/// What the plan asks of the method, constants of it read through the [`Stepper`] trait (and
+/// folded away in the loop built for the method).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stepping {
+    /// The method controls its step ([`Stepper::is_adaptive`]); else every step is the
+    /// settings' `fixed_step`.
+    pub(crate) adaptive: bool,
+    /// Its steps end on forecast kinks ([`Stepper::lands_on_kinks`]).
+    pub(crate) lands_on_kinks: bool,
+}
+
+impl Stepping {
+    #[inline(always)]
+    pub(crate) fn of<M: Stepper<N>, const N: usize>(method: &M) -> Self {
+        Stepping {
+            adaptive: method.is_adaptive(),
+            lands_on_kinks: method.lands_on_kinks(),
+        }
+    }
+}
 
 /// One step as planned.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,8 +84,7 @@ pub(crate) struct StepPlan {
     t_end: f64,
     /// The largest step: the settings' `h_max`, at most the run's length.
     h_max: f64,
-    /// Whether the method controls its step (else every step is `fixed_step`).
-    adaptive: bool,
+    /// Every step of a method that does not control its step.
     fixed_step: f64,
     /// Pending time stops, ascending, all after the current time.
     stops: Vec<f64>,
@@ -76,8 +97,8 @@ pub(crate) struct StepPlan {
 }
 
 impl StepPlan {
-    /// For a run from `t0` to `t_end` under `opts`, by a method that controls its step or not.
-    pub(crate) fn new(t0: f64, t_end: f64, opts: &SolverOptions, adaptive: bool) -> Self {
+    /// For a run from `t0` to `t_end` under `opts`.
+    pub(crate) fn new(t0: f64, t_end: f64, opts: &SolverOptions) -> Self {
         let mut stops: Vec<f64> = (opts.time_stops.iter().copied())
             .filter(|&s| s > t0 && s < t_end)
             .collect();
@@ -88,7 +109,6 @@ impl StepPlan {
         StepPlan {
             t_end,
             h_max: opts.h_max.min(t_end - t0),
-            adaptive,
             fixed_step: opts.fixed_step,
             stops,
             kinks: KinkForecast::new(0),
@@ -121,9 +141,9 @@ impl StepPlan {
         self.kinks.reset(sys, t, y);
     }
 
-    /// The next step from `t`, given the controller's size `h`, the events' forecast crossing
-    /// `next_crossing`, whether a forecast may shorten it (`forecast`) and whether the method
-    /// lands on kinks. `Err` with the step's size if it is too small to take at `t`.
+    /// The next step from `t` by the method `m`, given the controller's size `h`, the events'
+    /// forecast crossing `next_crossing` and whether a forecast may shorten the step
+    /// (`forecast`). `Err` with the step's size if it is too small to take at `t`.
     #[inline]
     pub(crate) fn next(
         &self,
@@ -131,7 +151,7 @@ impl StepPlan {
         h: f64,
         next_crossing: f64,
         forecast: bool,
-        lands_on_kinks: bool,
+        m: Stepping,
     ) -> Result<Planned, f64> {
         let next_stop = self
             .stops
@@ -139,14 +159,14 @@ impl StepPlan {
             .copied()
             .unwrap_or(self.t_end)
             .min(self.t_end);
-        let mut h = if self.adaptive {
+        let mut h = if m.adaptive {
             h.min(self.h_max)
         } else {
             self.fixed_step
         };
         let h_ctrl = h;
         let mut forecast_limited = false;
-        if self.adaptive && self.limited_streak < MAX_FORECAST_STEPS && forecast {
+        if m.adaptive && self.limited_streak < MAX_FORECAST_STEPS && forecast {
             // End the step where an event function closing on zero is forecast to cross it
             // rather than run past it into the new regime (`crossing_forecast.rs`).
             let to_crossing = (next_crossing - t) * (1.0 + LAND_PAST);
@@ -154,7 +174,7 @@ impl StepPlan {
                 h = to_crossing;
                 forecast_limited = true;
             }
-            if lands_on_kinks {
+            if m.lands_on_kinks {
                 if let Some(to_kink) = self.kinks.landing(t, h) {
                     h = to_kink;
                     forecast_limited = true;
@@ -262,12 +282,17 @@ impl StepPlan {
 mod tests {
     use super::*;
 
+    const ADAPTIVE: Stepping = Stepping {
+        adaptive: true,
+        lands_on_kinks: false,
+    };
+
     fn plan(stops: &[f64]) -> StepPlan {
         let opts = SolverOptions {
             time_stops: stops.to_vec(),
             ..SolverOptions::default()
         };
-        StepPlan::new(0.0, 10.0, &opts, true)
+        StepPlan::new(0.0, 10.0, &opts)
     }
 
     #[test]
@@ -275,11 +300,11 @@ mod tests {
         let mut p = plan(&[5.0, 2.0, 2.0, -1.0, 12.0]);
         assert_eq!(p.stops, [2.0, 5.0]);
         // 1 + 1.01 * 0.995 passes 2: stretched onto it
-        let step = p.next(1.0, 0.995, f64::INFINITY, true, false).unwrap();
+        let step = p.next(1.0, 0.995, f64::INFINITY, true, ADAPTIVE).unwrap();
         assert!(step.landing && step.end(1.0) == 2.0 && step.h == 1.0);
         assert_eq!(step.h_ctrl, 0.995);
         // well short of it: not landing
-        let step = p.next(1.0, 0.5, f64::INFINITY, true, false).unwrap();
+        let step = p.next(1.0, 0.5, f64::INFINITY, true, ADAPTIVE).unwrap();
         assert!(!step.landing && step.end(1.0) == 1.5);
         p.pass_stop();
         let mut ctl = Control::new();
@@ -291,36 +316,36 @@ mod tests {
         assert!(ctl.new_time_stops.is_empty());
         // the end is a stop too
         p.stops.clear();
-        let step = p.next(9.5, 1.0, f64::INFINITY, true, false).unwrap();
+        let step = p.next(9.5, 1.0, f64::INFINITY, true, ADAPTIVE).unwrap();
         assert!(step.landing && step.end(9.5) == 10.0 && p.at_end(step.end(9.5)));
     }
 
     #[test]
     fn a_forecast_crossing_ends_the_step_just_past_it_and_the_next_step_grows_back() {
         let mut p = plan(&[]);
-        let step = p.next(1.0, 0.5, 1.2, true, false).unwrap();
+        let step = p.next(1.0, 0.5, 1.2, true, ADAPTIVE).unwrap();
         assert_eq!(step.h, (1.2 - 1.0) * (1.0 + LAND_PAST));
         // the controller's size is kept for the step after
         assert_eq!(p.accepted(&step, 0.3), 0.5);
         // not when a forecast may not shorten the step (`StepGuard::allows_forecast`)
-        assert_eq!(p.next(1.0, 0.5, 1.2, false, false).unwrap().h, 0.5);
+        assert_eq!(p.next(1.0, 0.5, 1.2, false, ADAPTIVE).unwrap().h, 0.5);
         // nor a crossing beyond the step
-        assert_eq!(p.next(1.0, 0.1, 1.2, true, false).unwrap().h, 0.1);
+        assert_eq!(p.next(1.0, 0.1, 1.2, true, ADAPTIVE).unwrap().h, 0.1);
     }
 
     #[test]
     fn at_most_three_steps_in_a_row_are_shortened() {
         let mut p = plan(&[]);
         for _ in 0..MAX_FORECAST_STEPS {
-            let step = p.next(1.0, 0.5, 1.2, true, false).unwrap();
+            let step = p.next(1.0, 0.5, 1.2, true, ADAPTIVE).unwrap();
             assert!(step.h < 0.5);
             p.accepted(&step, 0.5);
         }
         // one step of the controller's own size, then forecasts again
-        let step = p.next(1.0, 0.5, 1.2, true, false).unwrap();
+        let step = p.next(1.0, 0.5, 1.2, true, ADAPTIVE).unwrap();
         assert_eq!(step.h, 0.5);
         p.accepted(&step, 0.5);
-        assert!(p.next(1.0, 0.5, 1.2, true, false).unwrap().h < 0.5);
+        assert!(p.next(1.0, 0.5, 1.2, true, ADAPTIVE).unwrap().h < 0.5);
     }
 
     #[test]
@@ -329,16 +354,20 @@ mod tests {
             fixed_step: 0.25,
             ..SolverOptions::default()
         };
-        let p = StepPlan::new(0.0, 10.0, &opts, false);
-        let step = p.next(1.0, 3.0, 1.1, true, false).unwrap();
+        let p = StepPlan::new(0.0, 10.0, &opts);
+        let fixed = Stepping {
+            adaptive: false,
+            lands_on_kinks: false,
+        };
+        let step = p.next(1.0, 3.0, 1.1, true, fixed).unwrap();
         assert_eq!(step.h, 0.25);
     }
 
     #[test]
     fn a_step_too_small_for_the_time_is_refused() {
         let p = plan(&[]);
-        assert!(p.next(1.0, 1e-17, f64::INFINITY, true, false).is_err());
-        assert!(p.next(1.0, 1e-12, f64::INFINITY, true, false).is_ok());
+        assert!(p.next(1.0, 1e-17, f64::INFINITY, true, ADAPTIVE).is_err());
+        assert!(p.next(1.0, 1e-12, f64::INFINITY, true, ADAPTIVE).is_ok());
     }
 
     #[test]
@@ -347,7 +376,7 @@ mod tests {
             h_max: 1e-6,
             ..SolverOptions::default()
         };
-        let mut p = StepPlan::new(0.0, 10.0, &opts, true);
+        let mut p = StepPlan::new(0.0, 10.0, &opts);
         let event = Some((0, true));
         assert_eq!(p.restart(event), None);
         p.kept(1e-6, Some(1e-10), 5);
