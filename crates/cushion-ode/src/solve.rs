@@ -88,6 +88,8 @@ struct Scanned<'a, const N: usize> {
     t: f64,
     y: &'a State<N>,
     h: f64,
+    /// Where the step ends (`Planned::end`).
+    t1: f64,
     /// The size the controller proposes next, and the scaled error the step was accepted with.
     h_new: f64,
     err_norm: Option<f64>,
@@ -97,7 +99,7 @@ struct Scanned<'a, const N: usize> {
     /// Where the scan ended the step (its end, unless a handler cut it), the state there
     /// after the handlers, and the strongest action they took.
     t_cut: f64,
-    y_cut: State<N>,
+    y_cut: &'a State<N>,
     action: EventAction,
 }
 
@@ -219,13 +221,14 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 t,
                 y: &y,
                 h,
+                t1,
                 h_new,
                 err_norm,
                 attempt: &attempt,
                 dense: &dense,
                 dense_stable,
                 t_cut,
-                y_cut,
+                y_cut: &y_cut,
                 action,
             };
             h = match self.keep(stepper, &mut controller, &mut ctl, &step, scanned) {
@@ -271,9 +274,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
         let (t, dense) = (s.t, s.dense);
         let cut = s.action != EventAction::Continue;
         let (t_new, y_new) = if cut {
-            (s.t_cut, s.y_cut)
+            (s.t_cut, *s.y_cut)
         } else {
-            (step.end(t), s.attempt.y1)
+            (s.t1, s.attempt.y1)
         };
         // Only the part of the step the run keeps teaches a restart its first step.
         let kept = if cut { s.t_cut - t } else { s.h };

@@ -138,7 +138,7 @@ pub trait Stepper<const N: usize> {
         f64::INFINITY
     }
     /// The `h |lambda|` ([`Stepper::stiffness_estimate`]) above which an accepted step that
-    /// jumped (`solve.rs`, `GUARD_GROWTH`) is taken again, shorter: for a method whose error
+    /// jumped (`step_guard.rs`, `GUARD_GROWTH`) is taken again, shorter: for a method whose error
     /// estimate can pass a step past its stability boundary. Infinite (the default) where the
     /// estimate grows with the step past it, as DOPRI5's does; DOP853's boundary for it
     /// ([`crate::dop853::STABILITY_GUARD`]).
