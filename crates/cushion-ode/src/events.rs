@@ -312,10 +312,13 @@ impl<const N: usize> EventScan<N> {
                 k += 1;
                 continue;
             }
-            let g_hi = self.values_at(&*sys, dense, &searched, (hi_t, t1), &g_end);
+            let mut g_hi = g_end;
+            self.values_at(&*sys, dense, &searched, (hi_t, t1), &mut g_hi);
 
-            let (times, t_first) =
-                self.crossings(&*sys, dense, &searched, (lo_t, hi_t), (&g_lo, &g_hi));
+            let mut times = [f64::INFINITY; MAX_EVENTS];
+            let segment = (lo_t, hi_t);
+            let t_first =
+                self.crossings(&*sys, dense, &searched, segment, (&g_lo, &g_hi), &mut times);
             if t_first.is_infinite() {
                 lo_t = hi_t;
                 g_lo = g_hi;
@@ -377,8 +380,8 @@ impl<const N: usize> EventScan<N> {
     }
 
     /// The values at `hi_t` of the functions `s` searches, on the dense output of a step that
-    /// ends at `t1` with the values `g_end`; a cleared function keeps its value at `t1` (the
-    /// same side, never searched).
+    /// ends at `t1`, written into `g_hi` (which holds the values at `t1`); a cleared function
+    /// keeps its value at `t1` (the same side, never searched).
     #[inline(always)]
     fn values_at<S: OdeSystem<N>>(
         &self,
@@ -386,25 +389,23 @@ impl<const N: usize> EventScan<N> {
         dense: &DenseOutput<N>,
         s: &Searched,
         (hi_t, t1): (f64, f64),
-        g_end: &[f64; MAX_EVENTS],
-    ) -> [f64; MAX_EVENTS] {
-        let mut g_hi = *g_end;
+        g_hi: &mut [f64; MAX_EVENTS],
+    ) {
         if hi_t != t1 {
             let y_hi = dense.eval(hi_t);
             if s.all_open {
-                self.eval(sys, hi_t, &y_hi, &mut g_hi);
+                self.eval(sys, hi_t, &y_hi, g_hi);
             } else {
                 for i in (0..self.n).filter(|&i| s.open[i]) {
                     g_hi[i] = sys.event(i, hi_t, &y_hi);
                 }
             }
         }
-        g_hi
     }
 
     /// Locate the crossing in the segment `(lo_t, hi_t]` of a step of each function `s`
     /// searches, from its values `g_lo` and `g_hi` at the segment's ends: each one's time
-    /// (infinite: none) and the earliest.
+    /// written into `times` (left infinite: none); returns the earliest.
     #[inline(always)]
     fn crossings<S: OdeSystem<N>>(
         &self,
@@ -413,9 +414,9 @@ impl<const N: usize> EventScan<N> {
         s: &Searched,
         (lo_t, hi_t): (f64, f64),
         (g_lo, g_hi): (&[f64; MAX_EVENTS], &[f64; MAX_EVENTS]),
-    ) -> ([f64; MAX_EVENTS], f64) {
+        times: &mut [f64; MAX_EVENTS],
+    ) -> f64 {
         let mut t_first = f64::INFINITY;
-        let mut times = [f64::INFINITY; MAX_EVENTS];
         for i in (0..self.n).filter(|&i| s.open[i]) {
             let g = |tt| sys.event(i, tt, &dense.eval(tt));
             let te = if s.dirs[i].crosses(g_lo[i], g_hi[i]) {
@@ -435,7 +436,7 @@ impl<const N: usize> EventScan<N> {
             times[i] = te;
             t_first = t_first.min(te);
         }
-        (times, t_first)
+        t_first
     }
 
     /// Handle the events at `(t, y)`, in index order: those whose crossing `times` puts there
