@@ -218,6 +218,7 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
                 self.pending = Some(Switch {
                     to: Method::Dp5,
                     since: self.held.started,
+                    to_stiff: false,
                     h_max: if rho > 0.0 {
                         NONSTIFF_FRACTION * STABILITY_BOUNDARY / rho
                     } else {
@@ -244,6 +245,7 @@ impl<const N: usize> Stepper<N> for AutoSwitch<N> {
                 self.pending = Some(Switch {
                     to: Method::Rodas,
                     since,
+                    to_stiff: true,
                     h_max: f64::INFINITY,
                 });
             }
@@ -295,6 +297,7 @@ mod tests {
         let switch = |to| Switch {
             to,
             since: 0.0,
+            to_stiff: to == Method::Rodas,
             h_max: f64::INFINITY,
         };
         let mut needed = Vec::new();

@@ -10,8 +10,9 @@
 //! method and its settings, [`solve`] orchestrates, and a [`Solution`] carries the final state,
 //! the recorded trajectory, the event log and the statistics. Stepping ([`stepper`]), dense
 //! output ([`dense`]), step-size control ([`controller`]), events ([`events`]) and the stiffness
-//! test ([`stiffness`]) each live in their own file; the Butcher tableaus are data
-//! ([`tableau`]). DOPRI5, the default method, has its own stepper with the coefficients as
+//! test ([`stiffness`]) each live in their own file, and so do the loop's step plan
+//! (`step_plan.rs`: where the next step ends) and step guard (`step_guard.rs`: whether an
+//! accepted step is kept or taken again); the Butcher tableaus are data ([`tableau`]). DOPRI5, the default method, has its own stepper with the coefficients as
 //! constants ([`dopri5`]); it gives the same numbers as the generic one reading its tableau.
 //! The Rosenbrock method ([`rodas`]) factorizes `I / (h gamma) - J` on the stack like the
 //! state (a fixed-size `nalgebra::SMatrix` and an LU with partial pivoting).
@@ -31,6 +32,7 @@ pub mod dense;
 pub mod dop853;
 pub mod dopri5;
 mod event_dip;
+mod event_locate;
 pub mod events;
 mod failure;
 pub mod jacobian;
@@ -38,10 +40,13 @@ pub mod kinks;
 mod lu;
 mod norm;
 pub mod options;
+mod record;
 mod restart_steps;
 pub mod rodas;
 pub mod solution;
 mod solve;
+mod step_guard;
+mod step_plan;
 pub mod stepper;
 pub mod stiffness;
 pub mod system;

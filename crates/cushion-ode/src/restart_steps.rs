@@ -20,7 +20,7 @@
 //!
 //! A step is learned from once the loop keeps it: a first step that the loop takes back after
 //! accepting it (a kinked crossing found inside it, a jump past the stability boundary:
-//! `solve.rs`, `take_back`) is reported as rejected, as the run's statistics count it. And
+//! `solve/attempt.rs`, `take_back`) is reported as rejected, as the run's statistics count it. And
 //! only the part the run kept is learned: a first step that the next event cut short is
 //! learned as its length up to that event. Learned whole, an attempt of which the run kept a
 //! picosecond was tried again at every recurrence, grown each time, and the same event found a

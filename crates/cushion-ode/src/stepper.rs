@@ -48,6 +48,9 @@ pub struct Switch {
     pub to: Method,
     /// When the run of steps that decided it began.
     pub since: f64,
+    /// The new method is the one for stiff problems, taken because the steps were held by
+    /// stability: the run counts as stiff from `since` ([`Stats::stiff`]).
+    pub to_stiff: bool,
     /// The largest next step the new method may take (infinite: no bound).
     pub h_max: f64,
 }
@@ -135,7 +138,7 @@ pub trait Stepper<const N: usize> {
         f64::INFINITY
     }
     /// The `h |lambda|` ([`Stepper::stiffness_estimate`]) above which an accepted step that
-    /// jumped (`solve.rs`, `GUARD_GROWTH`) is taken again, shorter: for a method whose error
+    /// jumped (`step_guard.rs`, `GUARD_GROWTH`) is taken again, shorter: for a method whose error
     /// estimate can pass a step past its stability boundary. Infinite (the default) where the
     /// estimate grows with the step past it, as DOPRI5's does; DOP853's boundary for it
     /// ([`crate::dop853::STABILITY_GUARD`]).

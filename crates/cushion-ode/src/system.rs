@@ -173,7 +173,7 @@ pub trait OdeSystem<const N: usize> {
     ///   taken again to end just past the crossing (`events.rs`, "Kinked crossings");
     /// - after the handlers restarted the run at event `i`, in the new regime (a contact has
     ///   just begun, its force sets in like `delta^1.5` where the first step starts): that
-    ///   step is judged by the more cautious of the method's estimates (`solve.rs`).
+    ///   step is judged by the more cautious of the method's estimates (`solve/attempt.rs`).
     ///
     /// False by default: a regime that only the handlers switch usually leaves `f` smooth
     /// across the crossing (a contact's onset before its handler, a threshold only recorded).
