@@ -1,4 +1,4 @@
-//! One row of the cost-against-accuracy table of a scene (`bench/scene_tolerances.sh`):
+//! One row of the cost-against-accuracy table of a scene (`lab/scene_tolerances.sh`):
 //! `tolerance_row SCENE.toml RTOL` runs the scene at `solver.rtol = RTOL`,
 //! `solver.atol = RTOL / 1000` (the paper scenes' ratio) and at rtol 1e-12 as the reference, and
 //! prints the steps, right-hand-side evaluations, the best wall time per run, and the errors of

@@ -83,7 +83,7 @@ impl GasLaw {
             // multiply-adds where Horner's rule has twelve. The stages of a step wait on one
             // another's right-hand side, so the depth of this chain (its latency), not the count
             // of its operations, is what the run's time sees: a few more multiplications buy a
-            // chain less than half as long (`bash bench/wall_time.sh` shows the effect). Its
+            // chain less than half as long (`bash lab/wall_time.sh` shows the effect). Its
             // accuracy is guarded by `tests::matches_pow_to_a_few_ulp`.
             let c = &self.coef;
             let u2 = u * u;

@@ -268,7 +268,7 @@ fn dop853_after_a_gentle_contact_onset() {
     // at rtol 1e-6 run 352's peak robot force came out 2.5e-4 off and its object's final speed
     // 6.5e-5 m/s, run 11400's peak contact force 3.0e-4. The model declares a contact's
     // penetration a kink of `f` (`OdeSystem::kinked_at_event`), and the first step after the
-    // onset is judged by the larger of DOP853's estimates (`cushion-ode`, `solve.rs`):
+    // onset is judged by the larger of DOP853's estimates (`cushion-ode`, `solve/attempt.rs`):
     // measured 9.1e-6, 2.2e-6 m/s and 4.3e-7.
     let dop853 =
         |module: &str, scene: [&str; 4], rtol: &str| run_with("dop853", module, scene, rtol);
@@ -313,7 +313,7 @@ fn dop853_past_its_stability_boundary() {
     // boundary (run 3353: 4.2 times the step before, `h |lambda|` 6.9 against 6.39, `err5` 25
     // times the tolerance): peak robot force 3.7e-5 and peak contact force 4.3e-5 off (run
     // 359: contact force 7.0e-5). Such a step is taken again at the stiffness threshold
-    // (`cushion-ode`, `solve.rs`, `GUARD_GROWTH`): measured 9.0e-9, 7.0e-9 and 7.9e-9.
+    // (`cushion-ode`, `step_guard.rs`, `GUARD_GROWTH`): measured 9.0e-9, 7.0e-9 and 7.9e-9.
     let cases = [
         (
             "run 3353",

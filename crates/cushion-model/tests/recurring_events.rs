@@ -2,7 +2,7 @@
 //! the step that followed the same event the last time, grown as its error allowed
 //! (`cushion-ode`, `restart_steps.rs`). When that first step was cut short by the next event
 //! near its start, the length it taught was its whole attempt, not the part the run kept
-//! (`solve.rs` now passes the kept part). Under DOPRI5 one of 20,000 wide scenes
+//! (the loop, `solve.rs`, passes the kept part). Under DOPRI5 one of 20,000 wide scenes
 //! (`examples/wide_scenes 20000 4242`) missed a stick of the tool that way and came out wrong.
 //! Under Rodas two of 20,000 wide corner scenes
 //! (`examples/wide_scenes 20000 4242 --corners --method rodas`; the scenes in `tests/scenes/`)

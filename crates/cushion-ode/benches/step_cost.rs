@@ -1,7 +1,7 @@
 //! Integrator benchmark (not a test): `cargo bench -p cushion-ode --bench step_cost`.
 //!
 //! 1. Arenstorf orbit over one period at tolerances 1e-4 .. 1e-10: steps, rejections,
-//!    right-hand-side evaluations and end error (compare with `bench/arenstorf_dopri5.py`,
+//!    right-hand-side evaluations and end error (compare with `lab/arenstorf_dopri5.py`,
 //!    Hairer's DOPRI5 through SciPy).
 //! 2. The integrator's own cost per step, beyond the right-hand-side evaluations: total time
 //!    minus `rhs_evals` times the measured cost of one evaluation, over attempted steps.

@@ -1,6 +1,6 @@
 //! The integrator alone on a smooth problem with a closed form (a benchmark, not a test): the
 //! damped linear oscillator `x'' + 2 zeta w x' + w^2 x = 0`, `x(0) = 1`, `x'(0) = 0`, to `T`,
-//! as `bench/work_precision.py` gives it to every peer.
+//! as `lab/work_precision.py` gives it to every peer.
 //!
 //! `oscillator W ZETA T METHOD=SETTING...` with `dp5=1e-6` (rtol; atol = rtol / 1000), `rk4=h1e-4`
 //! (a fixed step), one line per setting: `method setting status x'(T) seconds evaluations

@@ -1,5 +1,5 @@
 //! Work and wall time of the implicit method on the classic stiff problems (a benchmark, not a
-//! test): `cargo run --release -p cushion-ode --example stiff_ode` (or `bash bench/stiff_ode.sh`,
+//! test): `cargo run --release -p cushion-ode --example stiff_ode` (or `bash lab/stiff_ode.sh`,
 //! which also runs SciPy's solvers on the same problems when `.venv` has SciPy).
 //!
 //! For each problem, Rodas4 with the system's Jacobian, Rodas4 with finite differences, and

@@ -32,7 +32,7 @@
 //! error of a step across a kink, which an embedded estimate built for smooth solutions does not
 //! see. DOP853's two estimates give 0.22 and 0.04 of the true error for a `delta^1.5` that
 //! vanishes in the middle of a step, but 2.3 and 1.07 for one that vanishes at 0.99 of it
-//! (`bench/dop853_onset.py`). So, for a method that asks ([`crate::stepper::Stepper::lands_on_kinks`]),
+//! (`lab/dop853_onset.py`). So, for a method that asks ([`crate::stepper::Stepper::lands_on_kinks`]),
 //! a step whose first crossing is such a kink, found between [`REDO_AFTER`] and
 //! [`REDO_BEFORE`] of its length, is not handled: the scan reports the crossing and the loop
 //! takes the step again, once, ending just past it (`step_guard.rs`). The crossing is then found
@@ -59,7 +59,7 @@ use crate::State;
 /// A kinked crossing found before this share of a step asks for the step again. From 0.93 of
 /// the step on, both of DOP853's estimates are at or above the true error of a `delta^1.5`
 /// that vanishes there (1.07 to 48 times; at 0.90 the combined one is 0.27 of it:
-/// `python3 bench/dop853_onset.py 0.01 0.9 0.93 0.95 0.97 0.99`), so the step is judged
+/// `python3 lab/dop853_onset.py 0.01 0.9 0.93 0.95 0.97 0.99`), so the step is judged
 /// as it is.
 pub const REDO_BEFORE: f64 = 0.95;
 

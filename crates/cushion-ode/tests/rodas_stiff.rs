@@ -8,7 +8,7 @@
 //! RODAS (same coefficients, same controller) counts `f` the same way (one per accepted step
 //! plus five per attempt). No published counts of RODAS at these tolerances were at hand, so
 //! the comments compare with SciPy 1.17's `Radau` (a port of Hairer's RADAU5) and `BDF` on the
-//! same problems, tolerances and analytic Jacobians (`bench/stiff_scipy.py`; SciPy's steps are
+//! same problems, tolerances and analytic Jacobians (`lab/stiff_scipy.py`; SciPy's steps are
 //! accepted steps). The bounds on `rhs_evals` sit about 10 % above what Rodas takes.
 
 use cushion_ode::test_models::hires::{self, Hires};

@@ -123,7 +123,7 @@ fn a_recurring_contact_reuses_its_first_step() {
 /// A lone elastic rebound (`test_models::hertz_rebound`) in the cases where DOP853 read the
 /// lift-off from a step across it: its error estimates, built for smooth solutions, give 0.04
 /// (combined) and 0.22 (fifth order) of the true error for a `delta^1.5` that vanishes
-/// mid-step (`bench/dop853_onset.py`), and the rebound speed came out 24 to 144 times the
+/// mid-step (`lab/dop853_onset.py`), and the rebound speed came out 24 to 144 times the
 /// tolerance off.
 /// With the contact's end declared a kink of `f` (`OdeSystem::kinked_at_event`), such a step
 /// is taken again to end just past the lift-off (`events.rs`, "Kinked crossings"), and the

@@ -97,7 +97,7 @@ impl<S: OdeSystem<N>, const N: usize> Integration<'_, S, N> {
                     // DOP853's combined estimate, `err5^2 / sqrt(err5^2 + 0.01 err3^2)`, is
                     // built for smooth solutions: for a force that sets in like `delta^1.5`
                     // where the step starts it gives 0.29 of the true error, its fifth-order
-                    // estimate alone 1.46 (`bench/dop853_onset.py`). Such a step is judged
+                    // estimate alone 1.46 (`lab/dop853_onset.py`). Such a step is judged
                     // by the larger (cushion-model's
                     // `tests/peaks.rs::dop853_after_a_gentle_contact_onset`).
                     if self.since_restart.on_kink {
