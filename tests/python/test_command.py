@@ -87,7 +87,7 @@ def test_completions(cli, shell, marker):
     assert out.returncode == 0, out.stderr
     assert marker in out.stdout
     # every subcommand is offered
-    for sub in ("simulate", "sweep", "merge", "completions"):
+    for sub in ("simulate", "sweep", "merge", "design", "sensitivity", "completions"):
         assert sub in out.stdout
     assert out.stdout == cli("completions", shell).stdout
     assert installed("completions", "tcsh").returncode == 2
@@ -102,7 +102,7 @@ def test_bash_completion_offers_the_subcommands(cli, tmp_path):
         "COMP_POINT=${#COMP_LINE}; _cushion cushion s cushion; printf '%s\\n' \"${COMPREPLY[@]}\""
     )
     out = subprocess.run(["bash", "-c", probe], capture_output=True, text=True)
-    assert set(out.stdout.split()) == {"simulate", "sweep"}, out.stdout + out.stderr
+    assert set(out.stdout.split()) == {"simulate", "sweep", "sensitivity"}, out.stdout + out.stderr
 
 
 def test_main_returns_the_status_without_exiting():
