@@ -19,6 +19,8 @@ READERS = {
     "sweep": lambda p: cushion.sweep(p, progress=False),
     "read_mcap": lambda p: cushion.read_mcap(p),
     "dask.sweep_frame": lambda p: cdask.sweep_frame(p),
+    "design": lambda p: cushion.design(p, progress=False),
+    "sensitivity": lambda p: cushion.sensitivity(p, progress=False),
 }
 
 
@@ -36,14 +38,14 @@ def test_a_missing_file_is_file_not_found(name, tmp_path):
         READERS[name](str(missing))
 
 
-@pytest.mark.parametrize("name", ["simulate", "load_scene", "sweep", "read_mcap"])
+@pytest.mark.parametrize("name", ["simulate", "load_scene", "sweep", "read_mcap", "design", "sensitivity"])
 def test_a_folder_is_is_a_directory(name, tmp_path):
     with pytest.raises(IsADirectoryError) as e:
         READERS[name](tmp_path)
     assert e.value.errno == errno.EISDIR
 
 
-@pytest.mark.parametrize("name", ["simulate", "Scene", "load_scene", "sweep"])
+@pytest.mark.parametrize("name", ["simulate", "Scene", "load_scene", "sweep", "design", "sensitivity"])
 def test_a_file_that_is_not_toml_stays_a_config_error(name, tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text("module = = 3\n")
