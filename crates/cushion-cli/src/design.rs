@@ -49,7 +49,7 @@ fn run_inner(args: &DesignArgs) -> Result<(), SweepError> {
         threads: args.threads,
         git_commit: super::git_commit(),
     };
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(progress_bar);
+    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(false));
     let progress = |done: u64, total: u64| {
         if let Some(pb) = &bar {
             if pb.length() != Some(total) {
@@ -204,21 +204,4 @@ fn human_answer(a: &Json, out_dir: &std::path::Path, wall: f64) -> String {
         a["runs"]["verify"],
     ));
     s
-}
-
-fn progress_bar() -> indicatif::ProgressBar {
-    let pb = indicatif::ProgressBar::new(0);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  {rate}",
-        )
-        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
-        .with_key(
-            "rate",
-            |s: &indicatif::ProgressState, w: &mut dyn std::fmt::Write| {
-                let _ = write!(w, "{:.0} runs/s", s.per_sec());
-            },
-        ),
-    );
-    pb
 }

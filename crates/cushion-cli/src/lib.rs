@@ -10,6 +10,7 @@
 mod completions;
 mod design;
 mod merge;
+mod progress;
 pub mod sensitivity;
 mod simulate;
 mod sweep;

@@ -202,7 +202,7 @@ fn run_inner(args: &SensitivityArgs) -> Result<(), Failure> {
         shard: None,
         git_commit: super::git_commit(),
     };
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(progress_bar);
+    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(true));
     let progress = |done: u64, total: u64| {
         if let Some(pb) = &bar {
             if pb.length() != Some(total) {
@@ -276,15 +276,4 @@ fn human_summary(study: &Study) -> String {
         }
     }
     s
-}
-
-fn progress_bar() -> indicatif::ProgressBar {
-    let pb = indicatif::ProgressBar::new(0);
-    pb.set_style(
-        indicatif::ProgressStyle::with_template(
-            "{spinner} [{elapsed_precise}] {bar:40} {pos}/{len} runs  ETA {eta}",
-        )
-        .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    pb
 }
