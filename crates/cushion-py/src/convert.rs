@@ -100,3 +100,39 @@ pub fn from_toml<'py>(py: Python<'py>, v: &toml::Value) -> PyResult<Bound<'py, P
         }
     })
 }
+
+/// A file config the user gave (a sweep, a design question): a path to its TOML file, or a
+/// dict of the same shape, parsed by the library's own `from_file` / `from_str_at`. A file that
+/// cannot be read is Python's `OSError` subclass; anything the parser refuses a `ConfigError`.
+/// A dict without `name` is named `default_name`; a relative `scene` in it is taken from the
+/// working folder. `what` names the kind in messages ("sweep", "design").
+pub fn file_config<T>(
+    config: &Bound<'_, PyAny>,
+    what: &str,
+    default_name: &str,
+    from_file: fn(&std::path::Path) -> Result<T, String>,
+    from_str_at: fn(&str, &std::path::Path) -> Result<T, String>,
+) -> PyResult<T> {
+    use pyo3::types::PyString;
+    use std::path::Path;
+    if let Ok(p) = config.cast::<PyString>() {
+        let path = Path::new(p.to_str()?);
+        crate::errors::read_file(path)?;
+        return from_file(path).map_err(config_error);
+    }
+    if let Ok(d) = config.cast::<PyDict>() {
+        let mut table = to_table("", d)?;
+        table
+            .entry("name")
+            .or_insert_with(|| toml::Value::String(default_name.into()));
+        let text = toml::to_string(&table).map_err(|e| {
+            config_error(format!("{what} config: cannot be written as TOML: {e}"))
+        })?;
+        return from_str_at(&text, Path::new("<dict>"))
+            .map_err(|e| config_error(format!("{what} config: {e}")));
+    }
+    Err(config_error(format!(
+        "config = {}: expected a path to a {what} file (TOML) or a dict of the same shape",
+        config.repr()?
+    )))
+}

@@ -4,7 +4,7 @@
 //! `answer.json`'s text, and the refined map's classification of any design point. With
 //! `out`, every file `cushion design --out` writes is written there too.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use cushion_design::engine_runs::{compute_design, DesignResult};
@@ -13,34 +13,15 @@ use cushion_design::tables::{answer_json, design_table};
 use cushion_design::DesignFile;
 use cushion_sweep::Hooks;
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyString};
+use pyo3::types::PyBytes;
 
-use crate::convert::{to_table, to_toml};
-use crate::errors::{config_error, read_file, sweep_error};
+use crate::convert::{file_config, to_toml};
+use crate::errors::{config_error, sweep_error};
 use crate::sweep::{ipc_bytes, run_detached};
 
 /// The design question a user gave: a path to a design file, or a dict of the same shape.
 fn design_from(config: &Bound<'_, PyAny>) -> PyResult<DesignFile> {
-    if let Ok(p) = config.cast::<PyString>() {
-        let path = Path::new(p.to_str()?);
-        read_file(path)?;
-        return DesignFile::from_file(path).map_err(config_error);
-    }
-    if let Ok(d) = config.cast::<PyDict>() {
-        let mut table = to_table("", d)?;
-        table
-            .entry("name")
-            .or_insert_with(|| toml::Value::String("design".into()));
-        let text = toml::to_string(&table)
-            .map_err(|e| config_error(format!("design config: cannot be written as TOML: {e}")))?;
-        // A relative `scene` path is taken from the working folder.
-        return DesignFile::from_str_at(&text, Path::new("<dict>"))
-            .map_err(|e| config_error(format!("design config: {e}")));
-    }
-    Err(config_error(format!(
-        "config = {}: expected a path to a design file (TOML) or a dict of the same shape",
-        config.repr()?
-    )))
+    file_config(config, "design", "design", DesignFile::from_file, DesignFile::from_str_at)
 }
 
 /// An answered design question (see `cushion.Design`, which wraps it).

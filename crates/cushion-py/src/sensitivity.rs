@@ -4,41 +4,22 @@
 //! `design` do), and hands back the long table as an Arrow IPC stream. With `out`, every file
 //! of the command is written there too.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use cushion_cli::sensitivity::{prepare, run_in_memory, run_to_folder, Failure};
 use cushion_sensitivity::study::long_table;
 use cushion_sweep::{Hooks, SweepFile, SweepOptions};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyString};
+use pyo3::types::PyBytes;
 
-use crate::convert::to_table;
-use crate::errors::{config_error, read_file, sweep_error};
+use crate::convert::file_config;
+use crate::errors::{config_error, sweep_error};
 use crate::sweep::{ipc_bytes, run_detached};
 
-/// The sweep a user gave: a path to a sweep file, or a dict of the same shape.
+/// The saltelli sweep a user gave: a path to a sweep file, or a dict of the same shape.
 fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
-    if let Ok(p) = config.cast::<PyString>() {
-        let path = Path::new(p.to_str()?);
-        read_file(path)?;
-        return SweepFile::from_file(path).map_err(config_error);
-    }
-    if let Ok(d) = config.cast::<PyDict>() {
-        let mut table = to_table("", d)?;
-        table
-            .entry("name")
-            .or_insert_with(|| toml::Value::String("sensitivity".into()));
-        let text = toml::to_string(&table)
-            .map_err(|e| config_error(format!("sweep config: cannot be written as TOML: {e}")))?;
-        // A relative `scene` path is taken from the working folder.
-        return SweepFile::from_str_at(&text, Path::new("<dict>"))
-            .map_err(|e| config_error(format!("sweep config: {e}")));
-    }
-    Err(config_error(format!(
-        "config = {}: expected a path to a sweep file (TOML) or a dict of the same shape",
-        config.repr()?
-    )))
+    file_config(config, "sweep", "sensitivity", SweepFile::from_file, SweepFile::from_str_at)
 }
 
 /// Run a saltelli sweep and analyse it: the long table (the columns of `sensitivity.parquet`)

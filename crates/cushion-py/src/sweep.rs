@@ -14,36 +14,17 @@ use cushion_sweep::engine::{compute, Hooks, Plan};
 use cushion_sweep::parquet_io::read_parquet_all;
 use cushion_sweep::{run_sweep, Runs, SweepError, SweepFile, SweepOptions};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict, PyString};
+use pyo3::types::PyBytes;
 
-use crate::convert::to_table;
-use crate::errors::{config_error, guarded, read_file, sweep_error};
+use crate::convert::file_config;
+use crate::errors::{config_error, guarded, sweep_error};
 
 /// How often the waiting thread reports progress and looks for Ctrl-C.
 const POLL: Duration = Duration::from_millis(100);
 
 /// The sweep a user gave: a path to a sweep file, or a dict of the same shape.
 fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
-    if let Ok(p) = config.cast::<PyString>() {
-        let path = Path::new(p.to_str()?);
-        read_file(path)?;
-        return SweepFile::from_file(path).map_err(config_error);
-    }
-    if let Ok(d) = config.cast::<PyDict>() {
-        let mut table = to_table("", d)?;
-        table
-            .entry("name")
-            .or_insert_with(|| toml::Value::String("sweep".into()));
-        let text = toml::to_string(&table)
-            .map_err(|e| config_error(format!("sweep config: cannot be written as TOML: {e}")))?;
-        // A relative `scene` path is taken from the working folder.
-        return SweepFile::from_str_at(&text, Path::new("<dict>"))
-            .map_err(|e| config_error(format!("sweep config: {e}")));
-    }
-    Err(config_error(format!(
-        "config = {}: expected a path to a sweep file (TOML) or a dict of the same shape",
-        config.repr()?
-    )))
+    file_config(config, "sweep", "sweep", SweepFile::from_file, SweepFile::from_str_at)
 }
 
 /// Run `work` on another thread with the GIL released. Meanwhile, at most every [`POLL`], call
