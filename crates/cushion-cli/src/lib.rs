@@ -5,7 +5,7 @@
 //! Exit status: 0 success, 2 bad input (a message naming the key, value and what is allowed),
 //! 1 anything else (I/O; for `simulate`, also a run that ended with a status other than `ok`,
 //! whose summary is still printed). Each subcommand returns its status; nothing here exits the
-//! process (but the sweep's abrupt-stop test hook, which stands for a kill).
+//! process (the Python extension runs this command inside its host).
 
 mod completions;
 mod design;
@@ -19,6 +19,15 @@ use std::ffi::OsString;
 use std::io::Write;
 
 use clap::{Parser, Subcommand};
+
+/// Called after each chunk a sweep writes, with the count so far; set only by a program that
+/// owns its process (the `cushion` binary's abrupt-stop test hook), never by the extension.
+static CHUNK_WRITTEN: std::sync::OnceLock<fn(usize)> = std::sync::OnceLock::new();
+
+/// Install the after-chunk hook of `cushion sweep` (once; later calls are ignored).
+pub fn on_chunk_written(hook: fn(usize)) {
+    let _ = CHUNK_WRITTEN.set(hook);
+}
 
 /// Run the command with these arguments (the first is the program's name, as in `argv`) and
 /// return its exit status. Help, `--version` and usage errors are printed as clap prints them,

@@ -29,9 +29,6 @@ pub struct SweepArgs {
     pub quiet: bool,
 }
 
-/// Test hook of the end-to-end tests: end the process abruptly (exit status 99, no cleanup, as
-/// a kill would) once this many chunks were written by this process.
-const ABORT_ENV: &str = "CUSHION_SWEEP_ABORT_AFTER_CHUNKS";
 /// Print the time of each phase of the sweep on standard error.
 const TIMING_ENV: &str = "CUSHION_SWEEP_TIMING";
 
@@ -82,11 +79,9 @@ fn run_inner(args: &SweepArgs) -> Result<(), SweepError> {
             }
         }
     };
-    let abort_after: Option<usize> = std::env::var(ABORT_ENV).ok().and_then(|v| v.parse().ok());
     let chunk_written = |n: usize| {
-        if abort_after == Some(n) {
-            eprintln!("cushion sweep: {ABORT_ENV}={n}: stopping abruptly (test hook)");
-            std::process::exit(99);
+        if let Some(hook) = super::CHUNK_WRITTEN.get() {
+            hook(n);
         }
     };
     let hooks = Hooks {
