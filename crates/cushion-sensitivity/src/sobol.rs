@@ -85,8 +85,9 @@ impl Sensitivity {
     }
 }
 
-/// Resamples drawn together: their counts are applied in one pass over a column's terms.
-const BATCH: usize = 16;
+/// Resamples drawn together: one matrix product per column gives their sums. Fixed, so the
+/// result does not depend on the thread count.
+const BATCH: usize = 64;
 
 /// SALib's threshold for a zero range or variance (`np.finfo(float).eps`).
 const EPS: f64 = f64::EPSILON;
@@ -232,39 +233,40 @@ pub fn analyze(
     let per_resample = boot_columns.len() * layout.n_estimates();
     let mut boot = vec![0.0; options.resamples * per_resample];
     if per_resample > 0 {
+        let (n, t) = (layout.n, layout.n_terms());
+        // Every bootstrapped column's terms side by side, row i holding base point i's: one
+        // matrix product per batch then gives every resample's sums of every column.
+        let width = boot_columns.len() * t;
+        let mut terms = vec![0.0; n * width];
+        for (c, column) in boot_columns.iter().enumerate() {
+            for (row, q) in terms
+                .chunks_exact_mut(width)
+                .zip(column.terms.chunks_exact(t))
+            {
+                row[c * t..(c + 1) * t].copy_from_slice(q);
+            }
+        }
         boot.par_chunks_mut(BATCH * per_resample)
             .enumerate()
             .for_each(|(batch, out)| {
                 let nb = out.len() / per_resample;
-                let n = layout.n;
-                // counts[i * nb + b]: draws of base point i in the batch's resample b.
-                let mut counts = vec![0u32; n * nb];
-                for b in 0..nb {
+                // counts[b * n + i]: draws of base point i in the batch's resample b (each
+                // resample from its own stream, so batches do not change the draws).
+                let mut counts = vec![0.0f64; nb * n];
+                for (b, row) in counts.chunks_exact_mut(n).enumerate() {
                     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
                     rng.set_stream((batch * BATCH + b) as u64);
                     for _ in 0..n {
-                        counts[rng.random_range(0..n) * nb + b] += 1;
+                        row[rng.random_range(0..n)] += 1.0;
                     }
                 }
-                let t = layout.n_terms();
-                let mut sums = vec![0.0; nb * t];
-                for (c, column) in boot_columns.iter().enumerate() {
-                    sums.fill(0.0);
-                    for (q, w) in column.terms.chunks_exact(t).zip(counts.chunks_exact(nb)) {
-                        for (b, &w) in w.iter().enumerate() {
-                            if w == 0 {
-                                continue;
-                            }
-                            let w = w as f64;
-                            for (s, v) in sums[b * t..(b + 1) * t].iter_mut().zip(q) {
-                                *s += w * v;
-                            }
-                        }
-                    }
-                    for b in 0..nb {
+                let mut sums = vec![0.0; nb * width];
+                weighted_sums(&counts, nb, n, &terms, width, &mut sums);
+                for (b, row) in sums.chunks_exact(width).enumerate() {
+                    for (c, q) in row.chunks_exact(t).enumerate() {
                         let at = b * per_resample + c * layout.n_estimates();
                         estimates_from_sums(
-                            &sums[b * t..(b + 1) * t],
+                            q,
                             n as f64,
                             &layout,
                             &mut out[at..at + layout.n_estimates()],
@@ -322,6 +324,33 @@ pub fn analyze(
         }));
     }
     Ok(results)
+}
+
+/// `sums = counts · terms`: the sums of each resample's terms weighted by its draws (`counts`
+/// is `nb x n`, `terms` is `n x t`, `sums` is `nb x t`, all row-major). One single-threaded
+/// matrix product, so its rounding does not depend on the thread count.
+fn weighted_sums(counts: &[f64], nb: usize, n: usize, terms: &[f64], t: usize, sums: &mut [f64]) {
+    assert!(counts.len() == nb * n && terms.len() == n * t && sums.len() == nb * t);
+    // SAFETY: the three slices hold the row-major matrices the strides describe (asserted
+    // above), and `sums` is borrowed mutably, so it aliases neither input.
+    unsafe {
+        matrixmultiply::dgemm(
+            nb,
+            n,
+            t,
+            1.0,
+            counts.as_ptr(),
+            n as isize,
+            1,
+            terms.as_ptr(),
+            t as isize,
+            1,
+            0.0,
+            sums.as_mut_ptr(),
+            t as isize,
+            1,
+        );
+    }
 }
 
 /// Checks a column and normalises it as SALib does, `Y = (Y - Y.mean()) / Y.std()`; `None`
