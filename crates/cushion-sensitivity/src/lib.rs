@@ -76,10 +76,12 @@
 pub mod chart;
 pub mod distribution;
 pub mod error;
+mod long_table;
 pub mod normal;
 pub mod saltelli;
 pub mod sobol;
 pub mod study;
+mod study_options;
 
 pub use distribution::{Distribution, Domain, Marginal};
 pub use error::SensitivityError;
