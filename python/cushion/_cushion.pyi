@@ -96,6 +96,7 @@ def sensitivity(
     outputs: list[str] | None = None,
     threads: int | None = None,
     out: str | None = None,
+    resume: bool = False,
     progress: Callable[[int, int], None] | None = None,
     git_commit: str | None = None,
 ) -> bytes:

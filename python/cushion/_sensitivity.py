@@ -21,6 +21,7 @@ def sensitivity(
     threads: int | None = None,
     progress: bool | Progress | None = None,
     out: str | os.PathLike[str] | None = None,
+    resume: bool = False,
 ) -> pd.DataFrame:
     """Sobol indices of a saltelli sweep's outputs: S1, ST and S2 with bootstrap intervals.
 
@@ -50,6 +51,10 @@ def sensitivity(
         Also write every file ``cushion sensitivity --out`` writes into this folder
         (``summary.parquet``, ``provenance.json``, ``sensitivity.parquet``,
         ``sensitivity.csv``, ``sensitivity.svg``, ...).
+    resume
+        With ``out``: continue the study interrupted there (Ctrl-C, a crash). The runs of the
+        chunks already written are kept, the sweep file must be unchanged, and the analysis
+        reads every run.
 
     Returns
     -------
@@ -70,7 +75,7 @@ def sensitivity(
         Runs did not end ``ok`` and ``on_failed = "stop"`` (the message names how many and
         their inputs).
     KeyboardInterrupt
-        Ctrl-C stops the runs within one chunk.
+        Ctrl-C stops the runs within one chunk; with ``out``, ``resume=True`` continues.
     """
     if isinstance(outputs, str):
         raise _cushion.ConfigError(f"outputs = {outputs!r}: expected a list of summary field names")
@@ -81,6 +86,7 @@ def sensitivity(
             None if outputs is None else [str(o) for o in outputs],
             threads,
             None if out is None else os.fspath(out),
+            resume,
             callback,
             _git_commit() if out is not None else None,
         )

@@ -142,6 +142,19 @@ def test_salib_agrees_without_second_order(tmp_path):
     assert compare_with_salib(frame, summary, second_order=False) >= 5
 
 
+def test_drop_base_point_equals_salib_on_the_kept_blocks(tmp_path):
+    # A step limit only the runs with the most steps reach: some base points hold a failed run.
+    q = study_dict(on_failed="drop_base_point")
+    q["set"]["solver.max_steps"] = 350
+    frame = cushion.sensitivity(q, progress=False, out=tmp_path / "dropped")
+    summary = pd.read_parquet(tmp_path / "dropped" / "summary.parquet")
+    block = 2 * len(INPUTS) + 2
+    failed = (summary["status"] != "ok").to_numpy().reshape(-1, block).any(axis=1)
+    assert 0 < failed.sum() < len(failed) // 2
+    kept = summary[np.repeat(~failed, block)]
+    assert compare_with_salib(frame, kept, second_order=True) >= 5
+
+
 def test_constant_and_missing_outputs_are_reported_as_such():
     # The bistable module never turns stiff here, and has no gas: stats_stiff is 0 on every
     # run, max_gas_pressure is missing on every run.
@@ -181,4 +194,6 @@ def test_bad_input_raises_config_error(tmp_path):
     q["axis"][0] = {"key": "robot.dead_time", "dist": "normal", "mean": 0.07, "sd": 0.0, "range": [0.0, 0.1]}
     with pytest.raises(cushion.ConfigError, match="sd = 0: must be > 0"):
         cushion.sensitivity(q, progress=False)
+    with pytest.raises(cushion.ConfigError, match="resume=True needs out"):
+        cushion.sensitivity(study_dict(), resume=True, progress=False)
     assert not (tmp_path / "x").exists()

@@ -24,9 +24,17 @@ use clap::{Parser, Subcommand};
 /// owns its process (the `cushion` binary's abrupt-stop test hook), never by the extension.
 static CHUNK_WRITTEN: std::sync::OnceLock<fn(usize)> = std::sync::OnceLock::new();
 
-/// Install the after-chunk hook of `cushion sweep` (once; later calls are ignored).
+/// Install the after-chunk hook of `cushion sweep` and `cushion sensitivity` (once; later calls
+/// are ignored).
 pub fn on_chunk_written(hook: fn(usize)) {
     let _ = CHUNK_WRITTEN.set(hook);
+}
+
+/// The installed after-chunk hook, if any, called with the count of chunks written so far.
+fn chunk_written(n: usize) {
+    if let Some(hook) = CHUNK_WRITTEN.get() {
+        hook(n);
+    }
 }
 
 /// Run the command with these arguments (the first is the program's name, as in `argv`) and

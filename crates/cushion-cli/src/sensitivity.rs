@@ -1,7 +1,8 @@
-//! `cushion sensitivity FILE [--out DIR] [--threads N] [--quiet]`: Sobol indices of every chosen
-//! output of a `saltelli` sweep (docs/sensitivity.md). The sweep runs through the same engine
-//! and output folder as `cushion sweep`; the analysis is `cushion_sensitivity::study` over the
-//! summary's columns. This module also holds the steps the Python binding shares
+//! `cushion sensitivity FILE [--out DIR] [--threads N] [--resume] [--quiet]`: Sobol indices of
+//! every chosen output of a `saltelli` sweep (docs/sensitivity.md). The sweep runs through the
+//! same engine and output folder as `cushion sweep`; the analysis is
+//! `cushion_sensitivity::study` over the summary's columns. This module also holds the steps the
+//! Python binding shares
 //! ([`prepare`], [`run_to_folder`], [`run_in_memory`]); only [`run`] prints.
 
 use std::io::IsTerminal;
@@ -33,6 +34,11 @@ pub struct SensitivityArgs {
     /// Worker threads [default: all cores]. The results do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Continue an interrupted study in the same folder: the runs of the chunks already
+    /// written are kept (the sweep file must be unchanged), the rest are run, and the analysis
+    /// reads them all.
+    #[arg(long)]
+    pub resume: bool,
     /// No progress bar and no summary printed.
     #[arg(long, short)]
     pub quiet: bool,
@@ -77,9 +83,7 @@ impl From<SensitivityError> for Failure {
             SensitivityError::Config { .. } => Failure::Sweep(SweepError::Config(e.to_string())),
             SensitivityError::FailedRuns(m) => Failure::FailedRuns(m),
             SensitivityError::Io(m) => Failure::Sweep(SweepError::Io(m)),
-            SensitivityError::Output { .. } => {
-                Failure::Sweep(SweepError::Internal(e.to_string()))
-            }
+            SensitivityError::Output { .. } => Failure::Sweep(SweepError::Internal(e.to_string())),
         }
     }
 }
@@ -198,11 +202,12 @@ fn run_inner(args: &SensitivityArgs) -> Result<(), Failure> {
     let opts = SweepOptions {
         out: args.out.clone(),
         threads: args.threads,
-        resume: false,
+        resume: args.resume,
         shard: None,
         git_commit: super::git_commit(),
     };
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(true));
+    let bar =
+        (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(true));
     let progress = |done: u64, total: u64| {
         if let Some(pb) = &bar {
             if pb.length() != Some(total) {
@@ -214,7 +219,7 @@ fn run_inner(args: &SensitivityArgs) -> Result<(), Failure> {
     let hooks = Hooks {
         progress: Some(&progress),
         cancel: None,
-        chunk_written: None,
+        chunk_written: Some(&super::chunk_written),
     };
     let result = run_to_folder(prep, &opts, &hooks);
     if let Some(pb) = &bar {
@@ -253,9 +258,9 @@ fn human_summary(study: &Study) -> String {
     }
     for (name, f) in study.outputs.iter().zip(&study.findings) {
         match f {
-            Finding::NotFinite { runs } => {
-                s.push_str(&format!("{name}: not finite on {runs} runs, not analysed\n"))
-            }
+            Finding::NotFinite { runs } => s.push_str(&format!(
+                "{name}: not finite on {runs} runs, not analysed\n"
+            )),
             Finding::Sensitivity(Sensitivity::Constant { value }) => {
                 s.push_str(&format!("{name}: constant ({value})\n"))
             }

@@ -79,15 +79,10 @@ fn run_inner(args: &SweepArgs) -> Result<(), SweepError> {
             }
         }
     };
-    let chunk_written = |n: usize| {
-        if let Some(hook) = super::CHUNK_WRITTEN.get() {
-            hook(n);
-        }
-    };
     let hooks = Hooks {
         progress: Some(&progress),
         cancel: None,
-        chunk_written: Some(&chunk_written),
+        chunk_written: Some(&super::chunk_written),
     };
     let result = run_sweep(sweep, &opts, &hooks);
     if let Some(pb) = &bar {

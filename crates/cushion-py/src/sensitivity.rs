@@ -19,23 +19,37 @@ use crate::sweep::{ipc_bytes, run_detached};
 
 /// The saltelli sweep a user gave: a path to a sweep file, or a dict of the same shape.
 fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
-    file_config(config, "sweep", "sensitivity", SweepFile::from_file, SweepFile::from_str_at)
+    file_config(
+        config,
+        "sweep",
+        "sensitivity",
+        SweepFile::from_file,
+        SweepFile::from_str_at,
+    )
 }
 
 /// Run a saltelli sweep and analyse it: the long table (the columns of `sensitivity.parquet`)
-/// as an Arrow IPC stream. `outputs` overrides `[sensitivity] outputs`.
+/// as an Arrow IPC stream. `outputs` overrides `[sensitivity] outputs`; `resume` continues the
+/// unfinished study in `out`.
 #[pyfunction]
-#[pyo3(signature = (config, outputs=None, threads=None, out=None, progress=None, git_commit=None))]
+#[pyo3(signature = (config, outputs=None, threads=None, out=None, resume=false, progress=None, git_commit=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn sensitivity<'py>(
     py: Python<'py>,
     config: &Bound<'py, PyAny>,
     outputs: Option<Vec<String>>,
     threads: Option<usize>,
     out: Option<PathBuf>,
+    resume: bool,
     progress: Option<&Bound<'py, PyAny>>,
     git_commit: Option<String>,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let sweep = sweep_from(config)?;
+    if resume && out.is_none() {
+        return Err(config_error(
+            "resume=True needs out: the folder of the study to continue",
+        ));
+    }
     if threads == Some(0) {
         return Err(config_error(
             "threads = 0: must be at least 1 (or None for every core)",
@@ -61,7 +75,7 @@ pub fn sensitivity<'py>(
                 let opts = SweepOptions {
                     out: Some(dir),
                     threads,
-                    resume: false,
+                    resume,
                     shard: None,
                     git_commit,
                 };
