@@ -1,6 +1,7 @@
 //! One `[[axis]]` of a sweep file: its key and its values (`values`, `linspace`, `logspace`,
 //! `range` with `scale` or a distribution `dist`), checked against the sampling mode.
 
+use super::toml_helpers::{as_number, check_keys, type_name};
 use super::*;
 use cushion_sensitivity::{Distribution, Domain, Marginal};
 
