@@ -263,13 +263,12 @@ pub struct Model {
     pub y0: Vec<f64>,
 }
 
-impl Model {
-    /// Assemble a (validated) scene; the initial state is the static preload equilibrium.
-    pub fn new(scene: &Scene) -> Model {
-        let layout = Layout::of(scene);
+impl Params {
+    /// The numbers of a (validated) scene, in the model's symbols.
+    fn of(scene: &Scene) -> Params {
         let h = &scene.hydraulic;
         let bi = &scene.bistable;
-        let p = Params {
+        Params {
             module: scene.module,
             has_object: scene.object.enabled,
             m_t: scene.tool.mass,
@@ -306,52 +305,95 @@ impl Model {
                 h.critical_reynolds,
                 h.orifice_radius,
             ),
-        };
-        let from_rest = match scene.robot.start {
-            RobotStart::Cruising => None,
-            RobotStart::Rest => Some(scene.robot.acceleration),
-        };
-        let robot = RobotProfile::new(
-            scene.robot.approach_speed,
-            scene.robot.brake_deceleration,
-            from_rest,
-        );
-        let v0 = if from_rest.is_some() {
-            0.0
-        } else {
-            scene.robot.approach_speed
-        };
+        }
+    }
 
-        // Static preload equilibrium on the forward stop.
-        let s0 = match p.module {
+    /// The stroke `s0 <= 0` (m) of the static preload equilibrium on the forward stop, where
+    /// the stop's elastic force balances the module's preload: the gas pressure on the piston,
+    /// or the bistable springs' force. The rigid flange has no stroke.
+    fn preload_stroke(&self) -> f64 {
+        match self.module {
             Module::Hydraulic => {
-                let (p10, vg0, a_p, kappa) = (p.p10, p.v_g0, p.a_p, p.kappa);
-                physics::preload_equilibrium(p.k_e, |s| {
+                let (p10, vg0, a_p, kappa) = (self.p10, self.v_g0, self.a_p, self.kappa);
+                physics::preload_equilibrium(self.k_e, |s| {
                     physics::gas_pressure(p10, vg0, a_p, kappa, s) * a_p
                 })
             }
             Module::Bistable => {
-                let (k_b, w, hh, e) = (p.k_b, p.w, p.h, p.e);
-                physics::preload_equilibrium(p.k_e, |s| physics::bistable_force(k_b, w, hh, s + e))
+                let (k_b, w, hh, e) = (self.k_b, self.w, self.h, self.e);
+                physics::preload_equilibrium(self.k_e, |s| {
+                    physics::bistable_force(k_b, w, hh, s + e)
+                })
             }
             Module::Rigid => 0.0,
+        }
+    }
+
+    /// Which event functions the scene needs, and their kinds in index order.
+    fn event_functions(&self) -> (EventSet, [u8; MAX_EVENTS], usize) {
+        let event_set = EventSet {
+            tool: self.module != Module::Rigid,
+            object: self.has_object,
+            tool_stick: self.module != Module::Rigid && self.d > 0.0,
+            object_stick: self.has_object && self.mu_n > 0.0,
+            cavitation: self.p_cav.is_some(),
         };
-        let mut y0 = vec![0.0; layout.n.max(1)];
-        let x_t0 = -s0;
-        if let Some(i) = layout.tool {
-            y0[i] = x_t0;
-            y0[i + 1] = v0;
-        }
-        if let Some(j) = layout.object {
-            y0[j] = x_t0 + scene.object.gap;
-            y0[j + 1] = 0.0;
-        }
-        if let Some(q) = layout.liquid {
-            // at rest: the chamber at the gas pressure, the gas volume that of the lumped model
-            y0[q] = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s0);
-            y0[q + 1] = p.a_p * s0;
-        }
-        let regime = Regime {
+        let mut events = [0u8; MAX_EVENTS];
+        let mut n_events = 0;
+        event_set.visit(|e| {
+            events[n_events] = e;
+            n_events += 1;
+        });
+        (event_set, events, n_events)
+    }
+}
+
+/// The robot's speed profile, and the flange's speed at `t = 0` (at rest or cruising).
+fn robot_at_start(scene: &Scene) -> (RobotProfile, f64) {
+    let from_rest = match scene.robot.start {
+        RobotStart::Cruising => None,
+        RobotStart::Rest => Some(scene.robot.acceleration),
+    };
+    let robot = RobotProfile::new(
+        scene.robot.approach_speed,
+        scene.robot.brake_deceleration,
+        from_rest,
+    );
+    let v0 = if from_rest.is_some() {
+        0.0
+    } else {
+        scene.robot.approach_speed
+    };
+    (robot, v0)
+}
+
+/// The initial state, in the order of `layout`: the tool held on its forward stop at the
+/// preload stroke `s0` and moving with the flange at `v0`, the object at rest `gap` ahead of
+/// it, the liquid at rest.
+fn initial_state(layout: &Layout, p: &Params, s0: f64, v0: f64, gap: f64) -> Vec<f64> {
+    let mut y0 = vec![0.0; layout.n.max(1)];
+    let x_t0 = -s0;
+    if let Some(i) = layout.tool {
+        y0[i] = x_t0;
+        y0[i + 1] = v0;
+    }
+    if let Some(j) = layout.object {
+        y0[j] = x_t0 + gap;
+        y0[j + 1] = 0.0;
+    }
+    if let Some(q) = layout.liquid {
+        // at rest: the chamber at the gas pressure, the gas volume that of the lumped model
+        y0[q] = physics::gas_pressure(p.p10, p.v_g0, p.a_p, p.kappa, s0);
+        y0[q + 1] = p.a_p * s0;
+    }
+    y0
+}
+
+impl Regime {
+    /// The regime at the preload equilibrium of stroke `s0`: on the forward stop when
+    /// preloaded, the object stuck when plane friction can hold it, nothing else on.
+    fn at_preload(p: &Params, s0: f64) -> Regime {
+        Regime {
             detected: false,
             obj_contact: false,
             fwd: s0 < 0.0,
@@ -362,20 +404,21 @@ impl Model {
             cavitating: false,
             obj_released: false,
             stop_released: false,
-        };
-        let event_set = EventSet {
-            tool: p.module != Module::Rigid,
-            object: p.has_object,
-            tool_stick: p.module != Module::Rigid && p.d > 0.0,
-            object_stick: p.has_object && p.mu_n > 0.0,
-            cavitation: p.p_cav.is_some(),
-        };
-        let mut events = [0u8; MAX_EVENTS];
-        let mut n_events = 0;
-        event_set.visit(|e| {
-            events[n_events] = e;
-            n_events += 1;
-        });
+        }
+    }
+}
+
+impl Model {
+    /// Assemble a (validated) scene; the initial state is the static preload equilibrium.
+    pub fn new(scene: &Scene) -> Model {
+        let layout = Layout::of(scene);
+        let p = Params::of(scene);
+        let (robot, v0) = robot_at_start(scene);
+        let s0 = p.preload_stroke();
+        let y0 = initial_state(&layout, &p, s0, v0, scene.object.gap);
+        let regime = Regime::at_preload(&p, s0);
+        let (event_set, events, n_events) = p.event_functions();
+        // with a compressible liquid the gas law is one of the volume moved through the orifice
         let gas_area = if layout.liquid.is_some() { 1.0 } else { p.a_p };
         let mut m = Model {
             gas: GasLaw::new(p.p10, p.v_g0, gas_area, p.kappa),
@@ -394,18 +437,23 @@ impl Model {
             preload_stroke: s0,
             y0: Vec::new(),
         };
-        // Dry friction: the tool starts stuck if friction can hold it.
-        if m.p.d > 0.0 && m.p.module != Module::Rigid {
-            m.regime.tool_stuck = true;
-            let e = m.eval(0.0, &y0, m.robot.current(), &m.regime);
-            if e.f_f.abs() > m.p.d {
-                m.regime.tool_stuck = false;
-                m.regime.tool_dir = e.f_f.signum();
-            }
-        }
+        m.start_stuck_if_friction_holds(&y0);
         m.step_regime = m.regime;
         m.y0 = y0;
         m
+    }
+
+    /// Dry friction: the tool starts stuck to the flange if static friction can hold it at
+    /// `y0`, else slipping the way its holding force pushes it.
+    fn start_stuck_if_friction_holds(&mut self, y0: &[f64]) {
+        if self.p.d > 0.0 && self.p.module != Module::Rigid {
+            self.regime.tool_stuck = true;
+            let e = self.eval(0.0, y0, self.robot.current(), &self.regime);
+            if e.f_f.abs() > self.p.d {
+                self.regime.tool_stuck = false;
+                self.regime.tool_dir = e.f_f.signum();
+            }
+        }
     }
 
     /// The regime in force during the step being reported to observers (`on_step`).

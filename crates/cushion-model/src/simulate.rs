@@ -12,13 +12,13 @@
 //!   its final values at `t_end` come from its tail in closed form (`early_end/tail.rs`).
 
 use crate::config::{Module, Scene};
-use crate::early_end::{self, EarlyEnd};
+use crate::early_end::{self, EarlyEnd, Tail};
 use crate::ledger;
 pub use crate::ledger::EnergyLedger;
-use crate::model::{to_point, Model};
+use crate::model::{to_point, Eval, Model};
 use crate::observe::recorder::Recorder;
 use crate::observe::Observed;
-use crate::peaks::PeakSampler;
+use crate::peaks::{PeakSampler, Peaks};
 use crate::physics;
 use crate::summary::{RunStatus, SolverStats, Summary};
 use crate::trajectory::{EventLogEntry, Trajectory};
@@ -189,40 +189,21 @@ pub fn simulate_with_ledger(scene: &Scene, opts: &RunOptions) -> (RunResult, Opt
     }
 }
 
+/// One run of a validated scene: the model with its observers, solved to the end (or the early
+/// end and its tail), reduced to its summary, trajectory and event log.
 fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<EnergyLedger>) {
-    let model = Model::new(scene);
-    let recorder = opts
-        .trajectory
-        .then(|| Recorder::new(&model, opts.sample_interval));
-    let mut system = Observed {
-        peaks: PeakSampler::new(&model, scene.solver.rtol),
-        early_end: scene.solver.early_end.then(|| EarlyEnd::new(scene)),
-        model,
-        recorder,
-    };
-    let sopts = solver_options(scene);
-    let t_end = scene.t_end;
-    // a tail that ends at the robot's stop is followed by a second solve from there
-    let mut start = (0.0, system.model.y0.clone());
-    let mut stats = Stats::default();
-    let out = loop {
-        let out = match solve_from(&mut system, &sopts, (start.0, &start.1), t_end) {
-            Ok(out) => out,
-            Err(n) => {
-                let r = RunResult {
-                    summary: Summary::invalid(format!(
-                        "internal error: {n} states (at most {MAX_STATES})"
-                    )),
-                    trajectory: None,
-                    events: Vec::new(),
-                };
-                return (r, None);
-            }
-        };
-        stats += out.stats;
-        match resume_after_tail(&mut system, &out, scene.solver.rtol) {
-            Some(resume) => start = resume,
-            None => break Outcome { stats, ..out },
+    let mut system = observed_model(scene, opts);
+    let out = match solve_to_end(&mut system, scene) {
+        Ok(out) => out,
+        Err(n) => {
+            let r = RunResult {
+                summary: Summary::invalid(format!(
+                    "internal error: {n} states (at most {MAX_STATES})"
+                )),
+                trajectory: None,
+                events: Vec::new(),
+            };
+            return (r, None);
         }
     };
     let Observed {
@@ -237,6 +218,139 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     let mut out = out;
     out.stats.rhs_evals += peaks.halves_evals;
     let peaks = peaks.peaks;
+    let tail = early_end.and_then(|e| e.tail);
+    let (t, y) = final_state(&mut model, tail.as_ref(), &out, scene);
+    let seg_end = *model.robot.segment_at(t);
+    let e_end = model.eval(t, &y, &seg_end, &model.regime);
+    let ledger = final_energy_ledger(&model, t, &y);
+    let summary = summarise(&model, &peaks, &out, &y, &e_end, ledger);
+    let trajectory = recorder.map(|rec| {
+        rec.finish(
+            &model,
+            tail.as_ref(),
+            &out.y,
+            scene.t_end,
+            to_point(t, &e_end),
+        )
+    });
+    let mut events = std::mem::take(&mut model.log);
+    events.sort_by(|a, b| a.t.total_cmp(&b.t));
+    let result = RunResult {
+        summary,
+        trajectory,
+        events,
+    };
+    (result, ledger)
+}
+
+/// The model of a scene with the observers the run asks for: the peaks always, the early end
+/// unless it is off, the trajectory when one is recorded.
+fn observed_model(scene: &Scene, opts: &RunOptions) -> Observed {
+    let model = Model::new(scene);
+    let recorder = opts
+        .trajectory
+        .then(|| Recorder::new(&model, opts.sample_interval));
+    Observed {
+        peaks: PeakSampler::new(&model, scene.solver.rtol),
+        early_end: scene.solver.early_end.then(|| EarlyEnd::new(scene)),
+        model,
+        recorder,
+    }
+}
+
+/// Solve the scene to its end or its early end, the solver's counts summed over its solves:
+/// a ringing tail that ends at the robot's stop is followed by a second solve from there.
+/// `Err(n)` for a layout of more states than the integrator is built for.
+fn solve_to_end(system: &mut Observed, scene: &Scene) -> Result<Outcome, usize> {
+    let sopts = solver_options(scene);
+    let mut start = (0.0, system.model.y0.clone());
+    let mut stats = Stats::default();
+    loop {
+        let out = solve_from(system, &sopts, (start.0, &start.1), scene.t_end)?;
+        stats += out.stats;
+        match resume_after_tail(system, &out, scene.solver.rtol) {
+            Some(resume) => start = resume,
+            None => return Ok(Outcome { stats, ..out }),
+        }
+    }
+}
+
+/// The run's final time and state: where the solver stopped, or after an early end the
+/// tail's at `t_end`, in closed form, with the ledger's work and losses over the tail added.
+fn final_state(
+    model: &mut Model,
+    tail: Option<&Tail>,
+    out: &Outcome,
+    scene: &Scene,
+) -> (f64, Vec<f64>) {
+    match tail {
+        Some(tail) => {
+            let t_end = scene.t_end;
+            let mut y = tail.play(model, &out.y, t_end);
+            early_end::add_to_ledger(model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
+            (t_end, y)
+        }
+        None => (out.t, out.y.clone()),
+    }
+}
+
+/// The energy ledger's terms at the run's end (`None` with the ledger off).
+fn final_energy_ledger(model: &Model, t: f64, y: &[f64]) -> Option<EnergyLedger> {
+    ledger::energy_ledger(model, t, y).map(
+        |(residual, [work, kinetic, gas, elastic, dissipated])| EnergyLedger {
+            work,
+            kinetic,
+            gas,
+            elastic,
+            dissipated,
+            residual,
+        },
+    )
+}
+
+/// The summary of a finished run from its final state `y` (evaluated: `e_end`), its peaks,
+/// the event handlers' metrics and the solver's outcome.
+fn summarise(
+    model: &Model,
+    peaks: &Peaks,
+    out: &Outcome,
+    y: &[f64],
+    e_end: &Eval,
+    ledger: Option<EnergyLedger>,
+) -> Summary {
+    let (status, message) = run_status(out);
+    let (object_final_velocity, object_final_momentum, object_travel) = object_at_end(model, y);
+    let m = &model.metrics;
+    Summary {
+        status,
+        message,
+        t_detect: m.t_detect,
+        t_brake: model.robot.t_brake,
+        peak_robot_force: peaks.peak_fr,
+        t_peak_robot_force: peaks.t_peak_fr,
+        robot_impulse: robot_impulse(model, y, e_end),
+        peak_contact_force: peaks.peak_fc,
+        object_impacts: m.object_impacts,
+        forward_stop_impacts: m.fwd_impacts,
+        back_stop_impacts: m.back_impacts,
+        object_final_velocity,
+        object_final_momentum,
+        object_travel,
+        max_stroke: if model.layout.tool.is_some() {
+            peaks.max_stroke
+        } else {
+            0.0
+        },
+        back_stop_hit: m.back_hit,
+        max_gas_pressure: max_gas_pressure(model, peaks),
+        energy_residual: ledger.map(|l| l.residual),
+        stats: solver_stats(&out.stats),
+    }
+}
+
+/// The run's status from the solver's, and its message (empty for a run that is ok: the
+/// stiffness warning is in `stats.stiff`).
+fn run_status(out: &Outcome) -> (RunStatus, String) {
     let status = match out.status {
         Status::Success | Status::StoppedByEvent => RunStatus::Ok,
         Status::MaxSteps => RunStatus::MaxSteps,
@@ -245,35 +359,30 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
         Status::Stiff => RunStatus::Stiff,
         Status::InvalidInput => RunStatus::Invalid,
     };
-    // The stiffness warning is in `stats.stiff`; the message stays empty for a run that is ok.
     let message = if status == RunStatus::Ok {
         String::new()
     } else {
         out.message.clone()
     };
-    // Final state; after an early end, the tail's at t_end.
-    let tail = early_end.and_then(|e| e.tail);
-    let mut y = out.y.clone();
-    let mut t = out.t;
-    if let Some(tail) = &tail {
-        y = tail.play(&mut model, &out.y, t_end);
-        early_end::add_to_ledger(&model, tail, &out.y, t_end, scene.solver.rtol, &mut y);
-        t = t_end;
-    }
-    let l = model.layout;
-    let p = model.p.clone();
-    let seg_end = *model.robot.segment_at(t);
-    let e_end = model.eval(t, &y, &seg_end, &model.regime);
+    (status, message)
+}
 
-    let (object_final_velocity, object_final_momentum, object_travel) = match l.object {
+/// The object's final velocity, momentum and travel (`None` without an object).
+fn object_at_end(model: &Model, y: &[f64]) -> (Option<f64>, Option<f64>, Option<f64>) {
+    match model.layout.object {
         Some(j) => (
             Some(y[j + 1]),
-            Some(p.m_p * y[j + 1]),
+            Some(model.p.m_p * y[j + 1]),
             Some(y[j] - model.y0[j]),
         ),
         None => (None, None, None),
-    };
-    // Robot impulse from momentum.
+    }
+}
+
+/// The robot's impulse `int F_r dt`, exact from momentum: `-(m_t dv_t + m_p dv_p)`, or with
+/// plane friction, which takes momentum from the object too, `-(m_t dv_t + int F_c dt)`.
+fn robot_impulse(model: &Model, y: &[f64], e_end: &Eval) -> f64 {
+    let (l, p) = (&model.layout, &model.p);
     let seg0 = *model.robot.segment_at(0.0);
     let v_t0 = match l.tool {
         Some(i) => model.y0[i + 1],
@@ -285,19 +394,15 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
     } else if let Some(j) = l.object {
         impulse -= p.m_p * (y[j + 1] - model.y0[j + 1]);
     }
-    let ledger = ledger::energy_ledger(&model, t, &y).map(
-        |(residual, [work, kinetic, gas, elastic, dissipated])| EnergyLedger {
-            work,
-            kinetic,
-            gas,
-            elastic,
-            dissipated,
-            residual,
-        },
-    );
-    let energy_residual = ledger.map(|l| l.residual);
-    let max_gas_pressure = match p.module {
-        Module::Hydraulic if l.liquid.is_some() => Some(peaks.max_p1),
+    impulse
+}
+
+/// The hydraulic module's largest gas pressure: sampled with a compressible liquid, else the
+/// gas law's at the largest stroke (`None` for the other modules).
+fn max_gas_pressure(model: &Model, peaks: &Peaks) -> Option<f64> {
+    let p = &model.p;
+    match p.module {
+        Module::Hydraulic if model.layout.liquid.is_some() => Some(peaks.max_p1),
         Module::Hydraulic => Some(physics::gas_pressure(
             p.p10,
             p.v_g0,
@@ -306,51 +411,19 @@ fn simulate_valid(scene: &Scene, opts: &RunOptions) -> (RunResult, Option<Energy
             peaks.max_stroke,
         )),
         _ => None,
-    };
-    let t_brake = model.robot.t_brake;
-    let m = &model.metrics;
-    let summary = Summary {
-        status,
-        message,
-        t_detect: m.t_detect,
-        t_brake,
-        peak_robot_force: peaks.peak_fr,
-        t_peak_robot_force: peaks.t_peak_fr,
-        robot_impulse: impulse,
-        peak_contact_force: peaks.peak_fc,
-        object_impacts: m.object_impacts,
-        forward_stop_impacts: m.fwd_impacts,
-        back_stop_impacts: m.back_impacts,
-        object_final_velocity,
-        object_final_momentum,
-        object_travel,
-        max_stroke: if l.tool.is_some() {
-            peaks.max_stroke
-        } else {
-            0.0
-        },
-        back_stop_hit: m.back_hit,
-        max_gas_pressure,
-        energy_residual,
-        stats: SolverStats {
-            steps: out.stats.steps,
-            rejected: out.stats.rejected,
-            rhs_evals: out.stats.rhs_evals,
-            events: out.stats.events,
-            stiff: out.stats.stiff,
-            jacobians: out.stats.jacobian_evals,
-            lu_decompositions: out.stats.lu_decompositions,
-            method_switches: out.stats.method_switches,
-        },
-    };
-    let trajectory =
-        recorder.map(|rec| rec.finish(&model, tail.as_ref(), &out.y, t_end, to_point(t, &e_end)));
-    let mut events = std::mem::take(&mut model.log);
-    events.sort_by(|a, b| a.t.total_cmp(&b.t));
-    let result = RunResult {
-        summary,
-        trajectory,
-        events,
-    };
-    (result, ledger)
+    }
+}
+
+/// The solver's counts as the summary reports them.
+fn solver_stats(stats: &Stats) -> SolverStats {
+    SolverStats {
+        steps: stats.steps,
+        rejected: stats.rejected,
+        rhs_evals: stats.rhs_evals,
+        events: stats.events,
+        stiff: stats.stiff,
+        jacobians: stats.jacobian_evals,
+        lu_decompositions: stats.lu_decompositions,
+        method_switches: stats.method_switches,
+    }
 }

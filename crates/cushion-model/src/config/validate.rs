@@ -18,7 +18,27 @@ impl Scene {
     /// run, so a sweep that switches `module` still meets no invalid run at run time
     /// (`tests/config.rs::a_part_constrains_only_the_scenes_that_have_it`).
     pub fn validate(&self) -> Result<(), ConfigError> {
-        // 1. every number finite
+        self.validate_numbers_are_finite()?;
+        positive("t_end", self.t_end)?;
+        self.validate_robot()?;
+        self.validate_tool()?;
+        if self.object.enabled {
+            self.validate_object()?;
+        }
+        if self.module != Module::Rigid {
+            self.validate_stops_and_sensor()?;
+        }
+        if self.module == Module::Hydraulic {
+            self.validate_hydraulic()?;
+        }
+        if self.module == Module::Bistable {
+            self.validate_bistable()?;
+        }
+        self.validate_solver()
+    }
+
+    /// Every number of the scene is finite, whatever part it belongs to.
+    fn validate_numbers_are_finite(&self) -> Result<(), ConfigError> {
         for key in KEY_LIST {
             if let Some(toml::Value::Float(f)) = self.get_field(key) {
                 if !f.is_finite() {
@@ -26,130 +46,142 @@ impl Scene {
                 }
             }
         }
-        let pos = |key: &str, v: f64| {
-            if v > 0.0 {
-                Ok(())
-            } else {
-                Err(invalid(key, v, "must be > 0"))
-            }
-        };
-        let nonneg = |key: &str, v: f64| {
-            if v >= 0.0 {
-                Ok(())
-            } else {
-                Err(invalid(key, v, "must be >= 0"))
-            }
-        };
-        pos("t_end", self.t_end)?;
-        pos("robot.approach_speed", self.robot.approach_speed)?;
-        pos("robot.brake_deceleration", self.robot.brake_deceleration)?;
-        nonneg("robot.dead_time", self.robot.dead_time)?;
-        pos("robot.acceleration", self.robot.acceleration)?;
-        pos("tool.mass", self.tool.mass)?;
-        nonneg("tool.viscous_friction", self.tool.viscous_friction)?;
-        nonneg("tool.dry_friction", self.tool.dry_friction)?;
-        if self.object.enabled {
-            pos("object.mass", self.object.mass)?;
-            pos("object.gap", self.object.gap)?;
-            pos("object.contact_stiffness", self.object.contact_stiffness)?;
-            nonneg("object.contact_damping", self.object.contact_damping)?;
-            nonneg("object.plane_friction", self.object.plane_friction)?;
-        }
+        Ok(())
+    }
+
+    /// The robot's approach speed, braking, dead time and acceleration from rest.
+    fn validate_robot(&self) -> Result<(), ConfigError> {
+        positive("robot.approach_speed", self.robot.approach_speed)?;
+        positive("robot.brake_deceleration", self.robot.brake_deceleration)?;
+        non_negative("robot.dead_time", self.robot.dead_time)?;
+        positive("robot.acceleration", self.robot.acceleration)
+    }
+
+    /// The tool's mass and friction.
+    fn validate_tool(&self) -> Result<(), ConfigError> {
+        positive("tool.mass", self.tool.mass)?;
+        non_negative("tool.viscous_friction", self.tool.viscous_friction)?;
+        non_negative("tool.dry_friction", self.tool.dry_friction)
+    }
+
+    /// The object, its contact with the tool and its friction on the plane.
+    fn validate_object(&self) -> Result<(), ConfigError> {
+        positive("object.mass", self.object.mass)?;
+        positive("object.gap", self.object.gap)?;
+        positive("object.contact_stiffness", self.object.contact_stiffness)?;
+        non_negative("object.contact_damping", self.object.contact_damping)?;
+        non_negative("object.plane_friction", self.object.plane_friction)
+    }
+
+    /// The end-stops of a sliding tool, and its sensor, which must switch inside the stroke.
+    fn validate_stops_and_sensor(&self) -> Result<(), ConfigError> {
         let l = self.stops.stroke;
-        if self.module != Module::Rigid {
-            pos("stops.stroke", self.stops.stroke)?;
-            pos("stops.stiffness", self.stops.stiffness)?;
-            nonneg("stops.damping", self.stops.damping)?;
-            let ss = self.tool.sensor_threshold;
-            if !(ss > 0.0 && ss < l) {
-                return Err(invalid(
-                    "tool.sensor_threshold",
-                    ss,
-                    format!(
-                        "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
-                        format_float(l)
-                    ),
-                ));
-            }
+        positive("stops.stroke", self.stops.stroke)?;
+        positive("stops.stiffness", self.stops.stiffness)?;
+        non_negative("stops.damping", self.stops.damping)?;
+        let ss = self.tool.sensor_threshold;
+        if !(ss > 0.0 && ss < l) {
+            return Err(invalid(
+                "tool.sensor_threshold",
+                ss,
+                format!(
+                    "must lie inside the stroke, 0 < s_sensor < stops.stroke = {}",
+                    format_float(l)
+                ),
+            ));
         }
-        if self.module == Module::Hydraulic {
-            let h = &self.hydraulic;
-            pos("hydraulic.piston_radius", h.piston_radius)?;
-            pos("hydraulic.orifice_radius", h.orifice_radius)?;
-            if h.orifice_radius >= h.piston_radius {
-                return Err(invalid(
-                    "hydraulic.orifice_radius",
-                    h.orifice_radius,
-                    format!(
-                        "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
-                        format_float(h.piston_radius)
-                    ),
-                ));
-            }
-            pos("hydraulic.loss_coefficient", h.loss_coefficient)?;
-            pos("hydraulic.liquid_density", h.liquid_density)?;
-            pos("hydraulic.gas_pressure", h.gas_pressure)?;
-            pos("hydraulic.gas_volume", h.gas_volume)?;
-            let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
-            if h.gas_volume - a_p * l <= 0.0 {
-                return Err(invalid(
-                    "hydraulic.gas_volume",
-                    h.gas_volume,
-                    format!(
-                        "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
-                        format_float(a_p * l)
-                    ),
-                ));
-            }
-            let k = h.gas_exponent;
-            if !(k > 1.0 && k <= 2.0) {
-                return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
-            }
-            nonneg("hydraulic.bulk_modulus", h.bulk_modulus)?;
-            nonneg("hydraulic.chamber_volume", h.chamber_volume)?;
-            if h.bulk_modulus > 0.0 && self.main_chamber_volume() - a_p * l <= 0.0 {
-                return Err(invalid(
-                    "hydraulic.chamber_volume",
-                    h.chamber_volume,
-                    format!(
-                        "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3 (or 0: the swept volume plus {} m^3)",
-                        format_float(a_p * l),
-                        format_float(DEAD_VOLUME)
-                    ),
-                ));
-            }
-            if h.bulk_modulus > 0.0 {
-                pos("hydraulic.kinematic_viscosity", h.kinematic_viscosity)?;
-                pos("hydraulic.critical_reynolds", h.critical_reynolds)?;
-            }
-            if h.cavitation && h.cavitation_pressure >= h.gas_pressure {
-                return Err(invalid(
-                    "hydraulic.cavitation_pressure",
-                    h.cavitation_pressure,
-                    format!(
-                        "must be < hydraulic.gas_pressure = {}",
-                        format_float(h.gas_pressure)
-                    ),
-                ));
-            }
+        Ok(())
+    }
+
+    /// The hydraulic module: the orifice smaller than the piston, the gas volume and (with a
+    /// compressible liquid) the main chamber positive over the whole stroke, the polytropic
+    /// exponent in (1, 2], the cavitation pressure below the gas's.
+    fn validate_hydraulic(&self) -> Result<(), ConfigError> {
+        let l = self.stops.stroke;
+        let h = &self.hydraulic;
+        positive("hydraulic.piston_radius", h.piston_radius)?;
+        positive("hydraulic.orifice_radius", h.orifice_radius)?;
+        if h.orifice_radius >= h.piston_radius {
+            return Err(invalid(
+                "hydraulic.orifice_radius",
+                h.orifice_radius,
+                format!(
+                    "the orifice must be smaller than the piston: must be < hydraulic.piston_radius = {}",
+                    format_float(h.piston_radius)
+                ),
+            ));
         }
-        if self.module == Module::Bistable {
-            let b = &self.bistable;
-            pos("bistable.spring_stiffness", b.spring_stiffness)?;
-            pos("bistable.half_span", b.half_span)?;
-            pos("bistable.apex_rise", b.apex_rise)?;
-            if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
-                return Err(invalid(
-                    "bistable.offset",
-                    b.offset,
-                    format!(
-                        "must lie in [0, bistable.apex_rise = {})",
-                        format_float(b.apex_rise)
-                    ),
-                ));
-            }
-            self.bistable_forces_are_finite()?;
+        positive("hydraulic.loss_coefficient", h.loss_coefficient)?;
+        positive("hydraulic.liquid_density", h.liquid_density)?;
+        positive("hydraulic.gas_pressure", h.gas_pressure)?;
+        positive("hydraulic.gas_volume", h.gas_volume)?;
+        let a_p = std::f64::consts::PI * h.piston_radius * h.piston_radius;
+        if h.gas_volume - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.gas_volume",
+                h.gas_volume,
+                format!(
+                    "the gas volume V_g0 - A_p*s reaches zero inside the stroke: must be > A_p * stops.stroke = {} m^3",
+                    format_float(a_p * l)
+                ),
+            ));
         }
+        let k = h.gas_exponent;
+        if !(k > 1.0 && k <= 2.0) {
+            return Err(invalid("hydraulic.gas_exponent", k, "must lie in (1, 2]"));
+        }
+        non_negative("hydraulic.bulk_modulus", h.bulk_modulus)?;
+        non_negative("hydraulic.chamber_volume", h.chamber_volume)?;
+        if h.bulk_modulus > 0.0 && self.main_chamber_volume() - a_p * l <= 0.0 {
+            return Err(invalid(
+                "hydraulic.chamber_volume",
+                h.chamber_volume,
+                format!(
+                    "the piston would fill the main chamber inside the stroke: must be > A_p * stops.stroke = {} m^3 (or 0: the swept volume plus {} m^3)",
+                    format_float(a_p * l),
+                    format_float(DEAD_VOLUME)
+                ),
+            ));
+        }
+        if h.bulk_modulus > 0.0 {
+            positive("hydraulic.kinematic_viscosity", h.kinematic_viscosity)?;
+            positive("hydraulic.critical_reynolds", h.critical_reynolds)?;
+        }
+        if h.cavitation && h.cavitation_pressure >= h.gas_pressure {
+            return Err(invalid(
+                "hydraulic.cavitation_pressure",
+                h.cavitation_pressure,
+                format!(
+                    "must be < hydraulic.gas_pressure = {}",
+                    format_float(h.gas_pressure)
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The bistable module: its springs and geometry, the offset below the apex, and forces
+    /// that stay finite numbers.
+    fn validate_bistable(&self) -> Result<(), ConfigError> {
+        let b = &self.bistable;
+        positive("bistable.spring_stiffness", b.spring_stiffness)?;
+        positive("bistable.half_span", b.half_span)?;
+        positive("bistable.apex_rise", b.apex_rise)?;
+        if !(b.offset >= 0.0 && b.offset < b.apex_rise) {
+            return Err(invalid(
+                "bistable.offset",
+                b.offset,
+                format!(
+                    "must lie in [0, bistable.apex_rise = {})",
+                    format_float(b.apex_rise)
+                ),
+            ));
+        }
+        self.bistable_forces_are_finite()
+    }
+
+    /// The solver's tolerances and step limits.
+    fn validate_solver(&self) -> Result<(), ConfigError> {
         let s = &self.solver;
         // Hairer's DOPRI5 refuses rtol <= 10 eps (no step can meet it); 1 or more asks for no
         // digit at all
@@ -160,7 +192,7 @@ impl Scene {
                 "must lie in (10 eps = 2.2e-15, 1)",
             ));
         }
-        pos("solver.atol", s.atol)?;
+        positive("solver.atol", s.atol)?;
         if s.max_steps < 1 {
             return Err(ConfigError::InvalidValue {
                 key: "solver.max_steps".into(),
@@ -168,8 +200,7 @@ impl Scene {
                 allowed: "must be >= 1".into(),
             });
         }
-        pos("solver.fixed_step", s.fixed_step)?;
-        Ok(())
+        positive("solver.fixed_step", s.fixed_step)
     }
 
     /// The von Mises element's force and energy stay finite numbers over the stroke and at its
@@ -229,5 +260,23 @@ impl Scene {
             ));
         }
         Ok(())
+    }
+}
+
+/// `v` must be > 0.
+fn positive(key: &str, v: f64) -> Result<(), ConfigError> {
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(key, v, "must be > 0"))
+    }
+}
+
+/// `v` must be >= 0.
+fn non_negative(key: &str, v: f64) -> Result<(), ConfigError> {
+    if v >= 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(key, v, "must be >= 0"))
     }
 }

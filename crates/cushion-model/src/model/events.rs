@@ -266,6 +266,8 @@ impl Model {
             - hyst
     }
 
+    /// What event `kind` does at `(t, y)` (`y` may be changed: a part that sticks takes the
+    /// speed it sticks at).
     pub(super) fn handle_event(
         &mut self,
         kind: u8,
@@ -283,21 +285,7 @@ impl Model {
                 self.detect(t, y, ctl, "sensor");
                 EventAction::Restart
             }
-            EV_OBJECT => {
-                if !self.regime.obj_contact {
-                    self.log_event("object_contact_begin", t, y);
-                    self.regime.obj_contact = true;
-                    self.metrics.object_impacts += 1;
-                    if self.p.module == Module::Rigid && !self.regime.detected {
-                        self.detect(t, y, ctl, "sensor");
-                    }
-                } else {
-                    self.log_event("object_contact_end", t, y);
-                    self.regime.obj_contact = false;
-                }
-                self.regime.obj_released = false;
-                EventAction::Restart
-            }
+            EV_OBJECT => self.object_contact_begins_or_ends(t, y, ctl),
             EV_OBJ_RELEASE => {
                 self.regime.obj_released = !self.regime.obj_released;
                 EventAction::Restart
@@ -306,85 +294,10 @@ impl Model {
                 self.regime.stop_released = !self.regime.stop_released;
                 EventAction::Restart
             }
-            EV_FWD => {
-                if !self.regime.fwd {
-                    self.log_event("forward_stop_begin", t, y);
-                    self.regime.fwd = true;
-                    self.metrics.fwd_impacts += 1;
-                } else {
-                    self.log_event("forward_stop_end", t, y);
-                    self.regime.fwd = false;
-                }
-                self.regime.stop_released = false;
-                EventAction::Restart
-            }
-            EV_BACK => {
-                if !self.regime.back {
-                    self.log_event("back_stop_begin", t, y);
-                    self.regime.back = true;
-                    self.metrics.back_impacts += 1;
-                    self.metrics.back_hit = true;
-                } else {
-                    self.log_event("back_stop_end", t, y);
-                    self.regime.back = false;
-                }
-                self.regime.stop_released = false;
-                EventAction::Restart
-            }
-            EV_TOOL_STICK => {
-                let i = self.layout.tool.unwrap_or(0);
-                let seg = *self.robot.current();
-                if self.regime.tool_stuck {
-                    let e = self.eval(t, y, &seg, &self.regime);
-                    self.log_event("tool_slip", t, y);
-                    self.regime.tool_stuck = false;
-                    self.regime.tool_dir = e.f_f.signum();
-                } else {
-                    // sd crossed zero: can static friction hold the tool on the robot?
-                    let (_, v_r, _) = seg.at(t);
-                    let mut trial = self.regime;
-                    trial.tool_stuck = true;
-                    let mut ys = y.to_vec();
-                    ys[i + 1] = v_r;
-                    let e = self.eval(t, &ys, &seg, &trial);
-                    if e.f_f.abs() <= self.p.d {
-                        self.log_event("tool_stick", t, y);
-                        y[i + 1] = v_r;
-                        self.regime.tool_stuck = true;
-                        self.regime.tool_dir = 0.0;
-                    } else {
-                        let dir = e.f_f.signum();
-                        if dir == self.regime.tool_dir {
-                            // The slip speed touched zero and turns back: the same slip goes
-                            // on, `f` is unchanged, and a restart would only find the same
-                            // touch again at once (under Rodas, at every step, until the step
-                            // limit: `tests/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
-                            return EventAction::Continue;
-                        }
-                        self.regime.tool_dir = dir;
-                    }
-                }
-                EventAction::Restart
-            }
-            EV_OBJ_STICK => {
-                let j = self.layout.object.unwrap_or(0);
-                if self.regime.obj_stuck {
-                    self.log_event("object_slip", t, y);
-                    self.regime.obj_stuck = false;
-                    EventAction::Restart
-                } else {
-                    let seg = *self.robot.current();
-                    let e = self.eval(t, y, &seg, &self.regime);
-                    if e.f_c <= self.p.mu_n {
-                        self.log_event("object_stick", t, y);
-                        y[j + 1] = 0.0;
-                        self.regime.obj_stuck = true;
-                        EventAction::Restart
-                    } else {
-                        EventAction::Continue
-                    }
-                }
-            }
+            EV_FWD => self.forward_stop_begins_or_ends(t, y),
+            EV_BACK => self.back_stop_begins_or_ends(t, y),
+            EV_TOOL_STICK => self.tool_sticks_or_slips(t, y),
+            EV_OBJ_STICK => self.object_sticks_or_slips(t, y),
             EV_CAVITATION => {
                 if self.regime.cavitating {
                     self.log_event("cavitation_end", t, y);
@@ -396,6 +309,119 @@ impl Model {
                 EventAction::Restart
             }
             _ => EventAction::Continue,
+        }
+    }
+
+    /// The tool touches the object (an impact; with the rigid module, the touch is what detects
+    /// the object) or leaves it.
+    fn object_contact_begins_or_ends(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        ctl: &mut Control,
+    ) -> EventAction {
+        if !self.regime.obj_contact {
+            self.log_event("object_contact_begin", t, y);
+            self.regime.obj_contact = true;
+            self.metrics.object_impacts += 1;
+            if self.p.module == Module::Rigid && !self.regime.detected {
+                self.detect(t, y, ctl, "sensor");
+            }
+        } else {
+            self.log_event("object_contact_end", t, y);
+            self.regime.obj_contact = false;
+        }
+        self.regime.obj_released = false;
+        EventAction::Restart
+    }
+
+    /// The tool hits its forward stop or leaves it.
+    fn forward_stop_begins_or_ends(&mut self, t: f64, y: &[f64]) -> EventAction {
+        if !self.regime.fwd {
+            self.log_event("forward_stop_begin", t, y);
+            self.regime.fwd = true;
+            self.metrics.fwd_impacts += 1;
+        } else {
+            self.log_event("forward_stop_end", t, y);
+            self.regime.fwd = false;
+        }
+        self.regime.stop_released = false;
+        EventAction::Restart
+    }
+
+    /// The tool hits its back stop (the end of its stroke) or leaves it.
+    fn back_stop_begins_or_ends(&mut self, t: f64, y: &[f64]) -> EventAction {
+        if !self.regime.back {
+            self.log_event("back_stop_begin", t, y);
+            self.regime.back = true;
+            self.metrics.back_impacts += 1;
+            self.metrics.back_hit = true;
+        } else {
+            self.log_event("back_stop_end", t, y);
+            self.regime.back = false;
+        }
+        self.regime.stop_released = false;
+        EventAction::Restart
+    }
+
+    /// Dry friction on the tool: a stuck tool whose holding force passes the friction limit
+    /// slips; a slipping tool whose slip speed reaches zero sticks if static friction can hold
+    /// it on the robot, and otherwise slips on, the way its holding force pushes it.
+    fn tool_sticks_or_slips(&mut self, t: f64, y: &mut [f64]) -> EventAction {
+        let i = self.layout.tool.unwrap_or(0);
+        let seg = *self.robot.current();
+        if self.regime.tool_stuck {
+            let e = self.eval(t, y, &seg, &self.regime);
+            self.log_event("tool_slip", t, y);
+            self.regime.tool_stuck = false;
+            self.regime.tool_dir = e.f_f.signum();
+        } else {
+            // sd crossed zero: can static friction hold the tool on the robot?
+            let (_, v_r, _) = seg.at(t);
+            let mut trial = self.regime;
+            trial.tool_stuck = true;
+            let mut ys = y.to_vec();
+            ys[i + 1] = v_r;
+            let e = self.eval(t, &ys, &seg, &trial);
+            if e.f_f.abs() <= self.p.d {
+                self.log_event("tool_stick", t, y);
+                y[i + 1] = v_r;
+                self.regime.tool_stuck = true;
+                self.regime.tool_dir = 0.0;
+            } else {
+                let dir = e.f_f.signum();
+                if dir == self.regime.tool_dir {
+                    // The slip speed touched zero and turns back: the same slip goes
+                    // on, `f` is unchanged, and a restart would only find the same
+                    // touch again at once (under Rodas, at every step, until the step
+                    // limit: `tests/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
+                    return EventAction::Continue;
+                }
+                self.regime.tool_dir = dir;
+            }
+        }
+        EventAction::Restart
+    }
+
+    /// Plane friction on the object: a stuck object whose contact force passes the friction
+    /// limit slides; a sliding object that comes to rest sticks if friction can hold it there.
+    fn object_sticks_or_slips(&mut self, t: f64, y: &mut [f64]) -> EventAction {
+        let j = self.layout.object.unwrap_or(0);
+        if self.regime.obj_stuck {
+            self.log_event("object_slip", t, y);
+            self.regime.obj_stuck = false;
+            EventAction::Restart
+        } else {
+            let seg = *self.robot.current();
+            let e = self.eval(t, y, &seg, &self.regime);
+            if e.f_c <= self.p.mu_n {
+                self.log_event("object_stick", t, y);
+                y[j + 1] = 0.0;
+                self.regime.obj_stuck = true;
+                EventAction::Restart
+            } else {
+                EventAction::Continue
+            }
         }
     }
 
