@@ -14,6 +14,13 @@ fn abort_after_chunks(n: usize) {
 }
 
 fn main() {
+    // Ctrl-C asks a sweep, design or sensitivity run to stop at its next chunk or round, so
+    // nothing is left half-written; a second one ends the process at once.
+    let _ = ctrlc::set_handler(|| {
+        if cushion_cli::interrupt() {
+            std::process::exit(130);
+        }
+    });
     if std::env::var_os(ABORT_ENV).is_some() {
         cushion_cli::on_chunk_written(abort_after_chunks);
     }

@@ -2,7 +2,8 @@
 //! small question (the paper's, at a coarse design resolution of 1/8 and a 5 x 5 verification
 //! grid, so it runs in a second): the files and their columns, the witness of every worst case
 //! reproduced to the bit by `cushion simulate`, the same answer on 1 and 2 threads, bad input
-//! refused with nothing written, and the searched worst cases against a brute-force grid.
+//! refused with nothing written, Ctrl-C stopping a question with nothing written, and the
+//! searched worst cases against a brute-force grid.
 
 use std::fs;
 use std::path::{Path, PathBuf};
@@ -525,4 +526,29 @@ fn searched_worst_cases_are_within_tolerance_of_a_brute_force_grid_or_above() {
         "{total} runs for {} design points",
         runs.len()
     );
+}
+
+#[test]
+fn ctrl_c_stops_a_question_and_writes_nothing() {
+    // The README's question at its full resolution, on one thread: seconds of runs, so the
+    // interrupt lands while the search is under way.
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("stopped");
+    let file = root().join("sweeps/design-question.toml");
+    let child = Command::new(BIN)
+        .args(["design", s(&file), "--out", s(&out), "--threads", "1", "--quiet"])
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("cushion runs");
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(130), "{err}");
+    assert!(err.contains("stopped (interrupted); nothing written"), "{err}");
+    assert!(!out.exists(), "nothing written");
 }

@@ -3,7 +3,6 @@
 //! disk). This command draws the progress bar, prints the answer a person reads and finds the
 //! git commit for the provenance; the library does none of that.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use cushion_design::{answer_json, run_design, DesignFile, DesignOptions};
@@ -32,6 +31,10 @@ pub struct DesignArgs {
 pub fn run(args: DesignArgs) -> i32 {
     match run_inner(&args) {
         Ok(()) => 0,
+        Err(SweepError::Cancelled) => {
+            eprintln!("cushion design: stopped (interrupted); nothing written");
+            SweepError::Cancelled.exit_code()
+        }
         Err(e) => {
             eprintln!("cushion design: {e}");
             e.exit_code()
@@ -49,24 +52,15 @@ fn run_inner(args: &DesignArgs) -> Result<(), SweepError> {
         threads: args.threads,
         git_commit: super::git_commit(),
     };
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(false));
-    let progress = |done: u64, total: u64| {
-        if let Some(pb) = &bar {
-            if pb.length() != Some(total) {
-                pb.set_length(total);
-            }
-            pb.set_position(done);
-        }
-    };
+    let bar = crate::progress::RunsBar::new(args.quiet, false);
+    let progress = |done: u64, total: u64| bar.update(done, total);
     let hooks = Hooks {
         progress: Some(&progress),
-        cancel: None,
+        cancel: Some(&super::INTERRUPTED),
         chunk_written: None,
     };
     let result = run_design(file, &opts, &hooks);
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
+    bar.finish();
     let o = result?;
     for w in &o.warnings {
         eprintln!("cushion design: warning: {w}");

@@ -37,6 +37,18 @@ fn chunk_written(n: usize) {
     }
 }
 
+/// Raised by [`interrupt`]: the long subcommands (`sweep`, `design`, `sensitivity`) pass it to
+/// the engine as their cancel flag, so they stop within one chunk (a sweep keeps its finished
+/// chunks) or one round of a design search (nothing written).
+static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Ask the running subcommand to stop; returns whether it had been asked already. The `cushion`
+/// binary calls it on Ctrl-C (a second Ctrl-C ends the process at once); the Python extension
+/// has its own cancel flag.
+pub fn interrupt() -> bool {
+    INTERRUPTED.swap(true, std::sync::atomic::Ordering::SeqCst)
+}
+
 /// Run the command with these arguments (the first is the program's name, as in `argv`) and
 /// return its exit status. Help, `--version` and usage errors are printed as clap prints them,
 /// with clap's statuses (0, and 2 for a usage error).

@@ -5,7 +5,6 @@
 //! Python binding shares
 //! ([`prepare`], [`run_to_folder`], [`run_in_memory`]); only [`run`] prints.
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 use cushion_sensitivity::study::{resolve_outputs, write_study, STUDY_FILES};
@@ -206,25 +205,15 @@ fn run_inner(args: &SensitivityArgs) -> Result<(), Failure> {
         shard: None,
         git_commit: super::git_commit(),
     };
-    let bar =
-        (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(true));
-    let progress = |done: u64, total: u64| {
-        if let Some(pb) = &bar {
-            if pb.length() != Some(total) {
-                pb.set_length(total);
-            }
-            pb.set_position(done);
-        }
-    };
+    let bar = crate::progress::RunsBar::new(args.quiet, true);
+    let progress = |done: u64, total: u64| bar.update(done, total);
     let hooks = Hooks {
         progress: Some(&progress),
-        cancel: None,
+        cancel: Some(&super::INTERRUPTED),
         chunk_written: Some(&super::chunk_written),
     };
     let result = run_to_folder(prep, &opts, &hooks);
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
+    bar.finish();
     let (o, study, warnings) = result?;
     for w in o.warnings.iter().chain(&warnings) {
         eprintln!("cushion sensitivity: warning: {w}");

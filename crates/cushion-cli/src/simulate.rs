@@ -303,13 +303,45 @@ fn opt(v: Option<f64>, scale: f64, unit: &str, none: &str) -> (String, String) {
     }
 }
 
-/// The readable summary: one aligned line per summary field (its JSON name, value, unit, what
-/// it means).
+/// One line of the readable summary: the field's JSON name, its value and unit, what it means.
+type Row = (&'static str, (String, String), String);
+
+/// The readable summary: one aligned line per summary field, then the files written.
 fn human_summary(args: &SimulateArgs, scene: &Scene, s: &Summary, written: &[&Path]) -> String {
+    let rows = summary_rows(args, scene, s);
+    let name_w = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
+    // Align value+unit only over rows that carry a description (short values).
+    let val_w = rows
+        .iter()
+        .filter(|r| !r.2.is_empty())
+        .map(|r| r.1 .0.len() + 1 + r.1 .1.len())
+        .max()
+        .unwrap_or(0);
+    let mut out = String::new();
+    for (name, (value, unit), what) in rows {
+        let vu = if unit.is_empty() {
+            value
+        } else {
+            format!("{value} {unit}")
+        };
+        if what.is_empty() {
+            out.push_str(&format!("{name:<name_w$}  {vu}\n"));
+        } else {
+            out.push_str(&format!("{name:<name_w$}  {vu:<val_w$}  {what}\n"));
+        }
+    }
+    for p in written {
+        out.push_str(&format!("{:<name_w$}  {}\n", "wrote", p.display()));
+    }
+    out
+}
+
+/// The rows of [`human_summary`], in the order of the summary's fields.
+fn summary_rows(args: &SimulateArgs, scene: &Scene, s: &Summary) -> Vec<Row> {
     let num = |x: f64, scale: f64, unit: &str| (fmt_sig(x * scale, 5), unit.to_string());
     let count = |n: u32| (n.to_string(), String::new());
     let yes_no = |b: bool| (if b { "yes" } else { "no" }.to_string(), String::new());
-    let mut rows: Vec<(&str, (String, String), String)> = vec![
+    let mut rows: Vec<Row> = vec![
         ("scene", (scene_label(args), String::new()), String::new()),
         (
             "module",
@@ -422,31 +454,7 @@ fn human_summary(args: &SimulateArgs, scene: &Scene, s: &Summary, written: &[&Pa
             String::new(),
         ),
     ]);
-    let name_w = rows.iter().map(|r| r.0.len()).max().unwrap_or(0);
-    // Align value+unit only over rows that carry a description (short values).
-    let val_w = rows
-        .iter()
-        .filter(|r| !r.2.is_empty())
-        .map(|r| r.1 .0.len() + 1 + r.1 .1.len())
-        .max()
-        .unwrap_or(0);
-    let mut out = String::new();
-    for (name, (value, unit), what) in rows {
-        let vu = if unit.is_empty() {
-            value
-        } else {
-            format!("{value} {unit}")
-        };
-        if what.is_empty() {
-            out.push_str(&format!("{name:<name_w$}  {vu}\n"));
-        } else {
-            out.push_str(&format!("{name:<name_w$}  {vu:<val_w$}  {what}\n"));
-        }
-    }
-    for p in written {
-        out.push_str(&format!("{:<name_w$}  {}\n", "wrote", p.display()));
-    }
-    out
+    rows
 }
 
 #[cfg(test)]

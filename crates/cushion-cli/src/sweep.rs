@@ -3,7 +3,6 @@
 //! draws the progress bar, prints the warnings and the closing line, and finds the git commit
 //! for the provenance; the library does none of that.
 
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 use cushion_sweep::{run_sweep, Hooks, SweepError, SweepFile, SweepOptions};
@@ -67,27 +66,15 @@ fn run_inner(args: &SweepArgs) -> Result<(), SweepError> {
         shard: args.shard,
         git_commit: super::git_commit(),
     };
-    let bar = (!args.quiet && std::io::stderr().is_terminal()).then(|| crate::progress::runs_bar(true));
-    let progress = |done: u64, total: u64| {
-        if let Some(pb) = &bar {
-            if pb.length() != Some(total) {
-                pb.set_length(total);
-                pb.set_position(done);
-                pb.reset_eta();
-            } else {
-                pb.set_position(done);
-            }
-        }
-    };
+    let bar = crate::progress::RunsBar::new(args.quiet, true);
+    let progress = |done: u64, total: u64| bar.update(done, total);
     let hooks = Hooks {
         progress: Some(&progress),
-        cancel: None,
+        cancel: Some(&super::INTERRUPTED),
         chunk_written: Some(&super::chunk_written),
     };
     let result = run_sweep(sweep, &opts, &hooks);
-    if let Some(pb) = &bar {
-        pb.finish_and_clear();
-    }
+    bar.finish();
     let o = result?;
     for w in &o.warnings {
         eprintln!("cushion sweep: warning: {w}");

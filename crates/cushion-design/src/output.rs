@@ -22,7 +22,7 @@ use arrow_schema::DataType;
 use cushion_model::{simulate, Scene};
 use cushion_sweep::atomic::{write_atomic, AtomicFile};
 use cushion_sweep::engine::{Hooks, Model};
-use cushion_sweep::out_lock::OutputLock;
+use cushion_sweep::out_lock::{OutputLock, LOCK_FILE};
 use cushion_sweep::parquet_io::{count_failed_batch, write_parquet_atomic};
 use cushion_sweep::provenance::digest;
 use cushion_sweep::summary_table::{csv_text, write_csv_rows, ColType, TableSchema};
@@ -99,10 +99,22 @@ pub fn run_design_with(
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(&file.name));
+    let existed = out_dir.exists();
     let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
     let mut warnings: Vec<String> = lock.warning(&out_dir).into_iter().collect();
     remove_stale_temps(&out_dir);
-    let result = compute_design_with(file, opts.threads, hooks, sim)?;
+    let result = match compute_design_with(file, opts.threads, hooks, sim) {
+        Ok(result) => result,
+        Err(e) => {
+            // Stopped or failed before any file: a folder this call made goes again.
+            drop(lock);
+            if !existed {
+                let _ = fs::remove_file(out_dir.join(LOCK_FILE));
+                let _ = fs::remove_dir(&out_dir);
+            }
+            return Err(e);
+        }
+    };
     warnings.extend(write_design(&result, &out_dir, opts.git_commit.as_deref())?);
     drop(lock);
     Ok(DesignOutcome {
