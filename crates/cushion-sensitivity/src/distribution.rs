@@ -79,6 +79,113 @@ pub struct Marginal {
     upper_tail: bool,
 }
 
+/// The distribution's parameters and the range: finite, ordered, positive where they must be.
+fn check_parameters(
+    key: &str,
+    dist: Distribution,
+    range: Option<(f64, f64)>,
+) -> Result<(), SensitivityError> {
+    let finite = |name: &str, v: f64| {
+        if v.is_finite() {
+            Ok(())
+        } else {
+            Err(config(
+                format!("{key}: {name}"),
+                v,
+                "must be a finite number",
+            ))
+        }
+    };
+    let positive = |name: &str, v: f64| {
+        if v > 0.0 {
+            Ok(())
+        } else {
+            Err(config(format!("{key}: {name}"), v, "must be > 0"))
+        }
+    };
+    let ordered = |what: &str, low: f64, high: f64| {
+        if low < high {
+            Ok(())
+        } else {
+            Err(config(
+                format!("{key}: {what}"),
+                format!("[{low}, {high}]"),
+                "low must be below high",
+            ))
+        }
+    };
+    match dist {
+        Distribution::Uniform { low, high } => {
+            finite("low", low)?;
+            finite("high", high)?;
+            ordered("range", low, high)?;
+        }
+        Distribution::LogUniform { low, high } => {
+            finite("low", low)?;
+            finite("high", high)?;
+            positive("low", low)?;
+            ordered("range", low, high)?;
+        }
+        Distribution::Normal { mean, sd } => {
+            finite("mean", mean)?;
+            finite("sd", sd)?;
+            positive("sd", sd)?;
+        }
+        Distribution::LogNormal { median, sigma } => {
+            finite("median", median)?;
+            finite("sigma", sigma)?;
+            positive("median", median)?;
+            positive("sigma", sigma)?;
+        }
+        Distribution::Triangular { low, mode, high } => {
+            finite("low", low)?;
+            finite("mode", mode)?;
+            finite("high", high)?;
+            ordered("range", low, high)?;
+            if !(low..=high).contains(&mode) {
+                return Err(config(
+                    format!("{key}: mode"),
+                    mode,
+                    format!("must lie in the range [{low}, {high}]"),
+                ));
+            }
+        }
+    }
+    if let Some((low, high)) = range {
+        finite("range low", low)?;
+        finite("range high", high)?;
+        ordered("range", low, high)?;
+    }
+    Ok(())
+}
+
+/// A key that must be positive: the draws, which start at `d_low`, never reach 0 (a lognormal
+/// approaches it without reaching it).
+fn check_positive(
+    key: &str,
+    dist: Distribution,
+    range: Option<(f64, f64)>,
+    d_low: f64,
+) -> Result<(), SensitivityError> {
+    if d_low <= 0.0 && !matches!(dist, Distribution::LogNormal { .. } if d_low == 0.0) {
+        let value = match range {
+            Some((low, high)) => format!("[{low}, {high}]"),
+            None => dist.name().to_string(),
+        };
+        let what = if range.is_some() { "range" } else { "dist" };
+        return Err(config(
+            format!("{key}: {what}"),
+            value,
+            format!(
+                "draws values <= 0 ({} {}), and {key} must be positive: give a range with low > 0",
+                dist.name(),
+                describe_low(d_low)
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl Marginal {
     /// Checks `dist` (and `range`, the truncation, if given) for the input named `key`.
     ///
@@ -93,77 +200,7 @@ impl Marginal {
         range: Option<(f64, f64)>,
         domain: Domain,
     ) -> Result<Marginal, SensitivityError> {
-        let finite = |name: &str, v: f64| {
-            if v.is_finite() {
-                Ok(())
-            } else {
-                Err(config(
-                    format!("{key}: {name}"),
-                    v,
-                    "must be a finite number",
-                ))
-            }
-        };
-        let positive = |name: &str, v: f64| {
-            if v > 0.0 {
-                Ok(())
-            } else {
-                Err(config(format!("{key}: {name}"), v, "must be > 0"))
-            }
-        };
-        let ordered = |what: &str, low: f64, high: f64| {
-            if low < high {
-                Ok(())
-            } else {
-                Err(config(
-                    format!("{key}: {what}"),
-                    format!("[{low}, {high}]"),
-                    "low must be below high",
-                ))
-            }
-        };
-        match dist {
-            Distribution::Uniform { low, high } => {
-                finite("low", low)?;
-                finite("high", high)?;
-                ordered("range", low, high)?;
-            }
-            Distribution::LogUniform { low, high } => {
-                finite("low", low)?;
-                finite("high", high)?;
-                positive("low", low)?;
-                ordered("range", low, high)?;
-            }
-            Distribution::Normal { mean, sd } => {
-                finite("mean", mean)?;
-                finite("sd", sd)?;
-                positive("sd", sd)?;
-            }
-            Distribution::LogNormal { median, sigma } => {
-                finite("median", median)?;
-                finite("sigma", sigma)?;
-                positive("median", median)?;
-                positive("sigma", sigma)?;
-            }
-            Distribution::Triangular { low, mode, high } => {
-                finite("low", low)?;
-                finite("mode", mode)?;
-                finite("high", high)?;
-                ordered("range", low, high)?;
-                if !(low..=high).contains(&mode) {
-                    return Err(config(
-                        format!("{key}: mode"),
-                        mode,
-                        format!("must lie in the range [{low}, {high}]"),
-                    ));
-                }
-            }
-        }
-        if let Some((low, high)) = range {
-            finite("range low", low)?;
-            finite("range high", high)?;
-            ordered("range", low, high)?;
-        }
+        check_parameters(key, dist, range)?;
 
         // The interval the draws fill: the support, cut to the range.
         let (s_low, s_high) = dist.support();
@@ -171,24 +208,8 @@ impl Marginal {
             Some((low, high)) => (low.max(s_low), high.min(s_high)),
             None => (s_low, s_high),
         };
-        if domain == Domain::Positive
-            && d_low <= 0.0
-            && !matches!(dist, Distribution::LogNormal { .. } if d_low == 0.0)
-        {
-            let value = match range {
-                Some((low, high)) => format!("[{low}, {high}]"),
-                None => dist.name().to_string(),
-            };
-            let what = if range.is_some() { "range" } else { "dist" };
-            return Err(config(
-                format!("{key}: {what}"),
-                value,
-                format!(
-                    "draws values <= 0 ({} {}), and {key} must be positive: give a range with low > 0",
-                    dist.name(),
-                    describe_low(d_low)
-                ),
-            ));
+        if domain == Domain::Positive {
+            check_positive(key, dist, range, d_low)?;
         }
 
         let upper_tail = match dist {

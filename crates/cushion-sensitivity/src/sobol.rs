@@ -153,6 +153,50 @@ pub fn analyze(
     outputs: &[&[f64]],
     options: &SobolOptions,
 ) -> Result<Vec<Sensitivity>, SensitivityError> {
+    let Some(layout) = check(n_inputs, outputs, options)? else {
+        return Ok(Vec::new());
+    };
+    let columns: Vec<Option<Column>> = outputs
+        .par_iter()
+        .enumerate()
+        .map(|(o, y)| prepare(o, y, &layout))
+        .collect::<Result<_, _>>()?;
+    let points = point_estimates(&columns, &layout);
+    let boot_columns: Vec<&Column> = columns.iter().flatten().filter(|c| !c.flat_ab).collect();
+    let boot = bootstrap(&boot_columns, &layout, options);
+    let z = normal::quantile(0.5 + options.conf_level / 2.0);
+    let per_resample = boot_columns.len() * layout.n_estimates();
+    let mut boot_column = 0;
+    let mut results = Vec::with_capacity(columns.len());
+    for (o, (column, point)) in columns.iter().zip(points).enumerate() {
+        let (Some(column), Some(point)) = (column, point) else {
+            results.push(Sensitivity::Constant {
+                value: outputs[o][0],
+            });
+            continue;
+        };
+        let conf: Vec<f64> = if column.flat_ab {
+            vec![0.0; layout.n_estimates()]
+        } else {
+            let at = boot_column * layout.n_estimates();
+            boot_column += 1;
+            (0..layout.n_estimates())
+                .map(|e| z * std_ddof1(boot.iter().skip(at + e).step_by(per_resample).copied()))
+                .collect()
+        };
+        results.push(Sensitivity::Indices(indices(
+            column, &point, &conf, &layout,
+        )));
+    }
+    Ok(results)
+}
+
+/// The options and the columns' shape checked; the layout, or `None` without columns.
+fn check(
+    n_inputs: usize,
+    outputs: &[&[f64]],
+    options: &SobolOptions,
+) -> Result<Option<Layout>, SensitivityError> {
     if n_inputs == 0 {
         return Err(config("inputs", n_inputs, "must be at least 1"));
     }
@@ -172,7 +216,7 @@ pub fn analyze(
     }
     let block = block_len(n_inputs, options.second_order);
     let Some(first) = outputs.first() else {
-        return Ok(Vec::new());
+        return Ok(None);
     };
     let rows = first.len();
     for (o, y) in outputs.iter().enumerate() {
@@ -193,21 +237,17 @@ pub fn analyze(
             });
         }
     }
-    let layout = Layout {
+    Ok(Some(Layout {
         d: n_inputs,
         block,
         n: rows / block,
         second_order: options.second_order,
-    };
+    }))
+}
 
-    let columns: Vec<Option<Column>> = outputs
-        .par_iter()
-        .enumerate()
-        .map(|(o, y)| prepare(o, y, &layout))
-        .collect::<Result<_, _>>()?;
-
-    // Point estimates on the sample itself: every base point once.
-    let points: Vec<Option<Vec<f64>>> = columns
+/// Point estimates on the sample itself, every base point once; `None` for a constant column.
+fn point_estimates(columns: &[Option<Column>], layout: &Layout) -> Vec<Option<Vec<f64>>> {
+    columns
         .par_iter()
         .map(|c| {
             c.as_ref().map(|c| {
@@ -219,111 +259,93 @@ pub fn analyze(
                 }
                 let mut out = vec![0.0; layout.n_estimates()];
                 if !c.flat_ab {
-                    estimates_from_sums(&sums, layout.n as f64, &layout, &mut out);
+                    estimates_from_sums(&sums, layout.n as f64, layout, &mut out);
                 }
                 out
             })
         })
-        .collect();
+        .collect()
+}
 
-    // Bootstrap, in batches of resamples: a batch draws its resamples' base points (resample b
-    // from its own stream), then runs through each column's terms once, weighting base point i
-    // by how often each resample drew it. Laid out [resample][column][estimate].
-    let boot_columns: Vec<&Column> = columns.iter().flatten().filter(|c| !c.flat_ab).collect();
-    let per_resample = boot_columns.len() * layout.n_estimates();
+/// Every resample's estimates of every column, laid out [resample][column][estimate]: in
+/// batches of resamples, each batch drawing its resamples' base points (resample b from its own
+/// stream), then weighting base point i by how often each resample drew it.
+fn bootstrap(columns: &[&Column], layout: &Layout, options: &SobolOptions) -> Vec<f64> {
+    let per_resample = columns.len() * layout.n_estimates();
     let mut boot = vec![0.0; options.resamples * per_resample];
-    if per_resample > 0 {
-        let (n, t) = (layout.n, layout.n_terms());
-        // Every bootstrapped column's terms side by side, row i holding base point i's: one
-        // matrix product per batch then gives every resample's sums of every column.
-        let width = boot_columns.len() * t;
-        let mut terms = vec![0.0; n * width];
-        for (c, column) in boot_columns.iter().enumerate() {
-            for (row, q) in terms
-                .chunks_exact_mut(width)
-                .zip(column.terms.chunks_exact(t))
-            {
-                row[c * t..(c + 1) * t].copy_from_slice(q);
-            }
-        }
-        boot.par_chunks_mut(BATCH * per_resample)
-            .enumerate()
-            .for_each(|(batch, out)| {
-                let nb = out.len() / per_resample;
-                // counts[b * n + i]: draws of base point i in the batch's resample b (each
-                // resample from its own stream, so batches do not change the draws).
-                let mut counts = vec![0.0f64; nb * n];
-                for (b, row) in counts.chunks_exact_mut(n).enumerate() {
-                    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
-                    rng.set_stream((batch * BATCH + b) as u64);
-                    for _ in 0..n {
-                        row[rng.random_range(0..n)] += 1.0;
-                    }
-                }
-                let mut sums = vec![0.0; nb * width];
-                weighted_sums(&counts, nb, n, &terms, width, &mut sums);
-                for (b, row) in sums.chunks_exact(width).enumerate() {
-                    for (c, q) in row.chunks_exact(t).enumerate() {
-                        let at = b * per_resample + c * layout.n_estimates();
-                        estimates_from_sums(
-                            q,
-                            n as f64,
-                            &layout,
-                            &mut out[at..at + layout.n_estimates()],
-                        );
-                    }
-                }
-            });
+    if per_resample == 0 {
+        return boot;
     }
+    let (n, t) = (layout.n, layout.n_terms());
+    // Every column's terms side by side, row i holding base point i's: one matrix product per
+    // batch then gives every resample's sums of every column.
+    let width = columns.len() * t;
+    let mut terms = vec![0.0; n * width];
+    for (c, column) in columns.iter().enumerate() {
+        for (row, q) in terms
+            .chunks_exact_mut(width)
+            .zip(column.terms.chunks_exact(t))
+        {
+            row[c * t..(c + 1) * t].copy_from_slice(q);
+        }
+    }
+    boot.par_chunks_mut(BATCH * per_resample)
+        .enumerate()
+        .for_each(|(batch, out)| {
+            let nb = out.len() / per_resample;
+            // counts[b * n + i]: draws of base point i in the batch's resample b (each resample
+            // from its own stream, so batches do not change the draws).
+            let mut counts = vec![0.0f64; nb * n];
+            for (b, row) in counts.chunks_exact_mut(n).enumerate() {
+                let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+                rng.set_stream((batch * BATCH + b) as u64);
+                for _ in 0..n {
+                    row[rng.random_range(0..n)] += 1.0;
+                }
+            }
+            let mut sums = vec![0.0; nb * width];
+            weighted_sums(&counts, nb, n, &terms, width, &mut sums);
+            for (b, row) in sums.chunks_exact(width).enumerate() {
+                for (c, q) in row.chunks_exact(t).enumerate() {
+                    let at = b * per_resample + c * layout.n_estimates();
+                    let e = layout.n_estimates();
+                    estimates_from_sums(q, n as f64, layout, &mut out[at..at + e]);
+                }
+            }
+        });
+    boot
+}
 
-    let z = normal::quantile(0.5 + options.conf_level / 2.0);
-    let mut boot_column = 0;
-    let mut results = Vec::with_capacity(columns.len());
-    for (o, (column, point)) in columns.iter().zip(points).enumerate() {
-        let (Some(column), Some(point)) = (column, point) else {
-            results.push(Sensitivity::Constant {
-                value: outputs[o][0],
-            });
-            continue;
-        };
-        let conf: Vec<f64> = if column.flat_ab {
-            vec![0.0; layout.n_estimates()]
-        } else {
-            let at = boot_column * layout.n_estimates();
-            boot_column += 1;
-            (0..layout.n_estimates())
-                .map(|e| z * std_ddof1(boot.iter().skip(at + e).step_by(per_resample).copied()))
-                .collect()
-        };
-        let d = layout.d;
-        let est = |e: usize| Estimate {
-            value: point[e],
-            conf: conf[e],
-        };
-        let mut s2 = Vec::with_capacity(layout.n_pairs());
-        if layout.second_order {
-            let mut e = 2 * d;
-            for j in 0..d {
-                for k in j + 1..d {
-                    s2.push(PairEstimate {
-                        j,
-                        k,
-                        value: point[e],
-                        conf: conf[e],
-                    });
-                    e += 1;
-                }
+/// One column's indices from its point estimates and interval half-widths (both in the order
+/// of [`Layout::n_estimates`]).
+fn indices(column: &Column, point: &[f64], conf: &[f64], layout: &Layout) -> SobolIndices {
+    let d = layout.d;
+    let est = |e: usize| Estimate {
+        value: point[e],
+        conf: conf[e],
+    };
+    let mut s2 = Vec::with_capacity(layout.n_pairs());
+    if layout.second_order {
+        let mut e = 2 * d;
+        for j in 0..d {
+            for k in j + 1..d {
+                s2.push(PairEstimate {
+                    j,
+                    k,
+                    value: point[e],
+                    conf: conf[e],
+                });
+                e += 1;
             }
         }
-        results.push(Sensitivity::Indices(SobolIndices {
-            mean: column.mean,
-            variance: column.variance,
-            s1: (0..d).map(est).collect(),
-            st: (d..2 * d).map(est).collect(),
-            s2,
-        }));
     }
-    Ok(results)
+    SobolIndices {
+        mean: column.mean,
+        variance: column.variance,
+        s1: (0..d).map(est).collect(),
+        st: (d..2 * d).map(est).collect(),
+        s2,
+    }
 }
 
 /// `sums = counts · terms`: the sums of each resample's terms weighted by its draws (`counts`

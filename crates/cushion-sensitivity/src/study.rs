@@ -11,16 +11,12 @@
 //! finite on some runs, `value` being how many), `value` and `conf` (the half-width of the
 //! interval; empty for `constant` and `not_finite`).
 
-use std::io::Write;
-use std::path::Path;
-use std::sync::Arc;
 use std::time::Instant;
 
-use arrow_array::builder::{Float64Builder, StringBuilder};
 use arrow_array::{
     Array, ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray,
 };
-use arrow_schema::{DataType, Field, Schema};
+use arrow_schema::{DataType, Schema};
 
 use crate::error::{config, SensitivityError};
 use crate::saltelli::SaltelliSample;
@@ -170,6 +166,29 @@ pub fn run_study(
     outputs: &[String],
     opts: &StudyOptions,
 ) -> Result<Study, SensitivityError> {
+    let n_rows = check_rows(batches, sample)?;
+    let status = statuses(batches)?;
+    let failed: Vec<usize> = (0..n_rows)
+        .filter(|&i| status[i].as_deref() != Some("ok"))
+        .collect();
+    let used = base_points_to_use(batches, inputs, sample, &status, &failed, opts)?;
+    let started = Instant::now();
+    let findings = findings(batches, sample, outputs, &used, opts)?;
+    Ok(Study {
+        inputs: inputs.to_vec(),
+        outputs: outputs.to_vec(),
+        findings,
+        second_order: sample.second_order(),
+        conf_level: opts.conf_level,
+        base_points: sample.n_base(),
+        base_points_used: used.len(),
+        failed_runs: failed.len(),
+        analysis_seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The summary holds the sample's runs, in order: their count.
+fn check_rows(batches: &[RecordBatch], sample: &SaltelliSample) -> Result<usize, SensitivityError> {
     let n_rows: usize = batches.iter().map(|b| b.num_rows()).sum();
     if n_rows as u64 != sample.n_rows() {
         return Err(config(
@@ -186,8 +205,12 @@ pub fn run_study(
             "the rows must be the runs in order (a whole sweep, not a shard)",
         ));
     }
-    let block = sample.block();
-    let mut status: Vec<Option<String>> = Vec::with_capacity(n_rows);
+    Ok(n_rows)
+}
+
+/// Every run's `status`.
+fn statuses(batches: &[RecordBatch]) -> Result<Vec<Option<String>>, SensitivityError> {
+    let mut status = Vec::new();
     for b in batches {
         let a = column(b, "status")?;
         let s = a
@@ -196,9 +219,20 @@ pub fn run_study(
             .ok_or_else(|| config("summary", "column `status`", "must be text"))?;
         status.extend(s.iter().map(|x| x.map(str::to_string)));
     }
-    let failed: Vec<usize> = (0..n_rows)
-        .filter(|&i| status[i].as_deref() != Some("ok"))
-        .collect();
+    Ok(status)
+}
+
+/// The base points to analyse: all, unless runs `failed`; then, by `on_failed`, an error that
+/// lists the first of them with their inputs, or the base points that hold none.
+fn base_points_to_use(
+    batches: &[RecordBatch],
+    inputs: &[String],
+    sample: &SaltelliSample,
+    status: &[Option<String>],
+    failed: &[usize],
+    opts: &StudyOptions,
+) -> Result<Vec<usize>, SensitivityError> {
+    let n_rows = status.len();
     let mut keep = vec![true; sample.n_base()];
     if !failed.is_empty() {
         match opts.on_failed {
@@ -231,8 +265,8 @@ pub fn run_study(
                 )));
             }
             OnFailed::DropBasePoint => {
-                for &r in &failed {
-                    keep[r / block] = false;
+                for &r in failed {
+                    keep[r / sample.block()] = false;
                 }
             }
         }
@@ -244,15 +278,25 @@ pub fn run_study(
             failed.len()
         )));
     }
+    Ok(used)
+}
 
-    let started = Instant::now();
+/// What the study says of each output, over the `used` base points' blocks.
+fn findings(
+    batches: &[RecordBatch],
+    sample: &SaltelliSample,
+    outputs: &[String],
+    used: &[usize],
+    opts: &StudyOptions,
+) -> Result<Vec<Finding>, SensitivityError> {
+    let block = sample.block();
     let mut findings: Vec<Option<Finding>> = vec![None; outputs.len()];
     let mut columns: Vec<Vec<f64>> = Vec::new();
     let mut analysed: Vec<usize> = Vec::new();
     for (o, name) in outputs.iter().enumerate() {
         let all = gather(batches, name)?;
         let mut kept = Vec::with_capacity(used.len() * block);
-        for &i in &used {
+        for &i in used {
             kept.extend_from_slice(&all[i * block..(i + 1) * block]);
         }
         let bad = kept.iter().filter(|x| !x.is_finite()).count();
@@ -280,21 +324,18 @@ pub fn run_study(
     for (o, r) in analysed.into_iter().zip(results) {
         findings[o] = Some(Finding::Sensitivity(r));
     }
-    Ok(Study {
-        inputs: inputs.to_vec(),
-        outputs: outputs.to_vec(),
-        findings: findings.into_iter().map(|f| f.expect("every output has a finding")).collect(),
-        second_order: sample.second_order(),
-        conf_level: opts.conf_level,
-        base_points: sample.n_base(),
-        base_points_used: used.len(),
-        failed_runs: failed.len(),
-        analysis_seconds: started.elapsed().as_secs_f64(),
-    })
+    Ok(findings
+        .into_iter()
+        .map(|f| f.expect("every output has a finding"))
+        .collect())
 }
 
 #[cfg(test)]
 mod tests {
+    use std::sync::Arc;
+
+    use arrow_schema::Field;
+
     use super::*;
 
     /// A summary of the 2-input, 8-base-point sample (no second order: 32 rows) with the output
