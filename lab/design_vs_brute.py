@@ -88,17 +88,19 @@ def worst_of(frame: pd.DataFrame, limit: dict) -> pd.Series:
     return v
 
 
-CACHE = os.environ.get("CUSHION_BRUTE_CACHE", os.path.join(ROOT, "target", "design-brute-cache"))
+# Committed: the brute force costs about 20 minutes on 2 cores and does not change when the
+# search does (only when the model's numbers do: then delete the folder).
+CACHE = os.environ.get("CUSHION_BRUTE_CACHE", os.path.join(ROOT, "lab", "results", "design_brute"))
 
 
 def brute(q: dict, threads: int) -> tuple[pd.DataFrame, int, float]:
     """Per lattice design point: the worst case of each limit over the for_all grid, its margin.
-    Kept in $CUSHION_BRUTE_CACHE (default target/design-brute-cache/), keyed by the question:
-    the brute force does not change when the search does."""
+    Kept in $CUSHION_BRUTE_CACHE (default lab/results/design_brute/), keyed by the question."""
     import hashlib
 
-    key = hashlib.sha256(json.dumps(q, sort_keys=True).encode()).hexdigest()[:16]
-    path = os.path.join(CACHE, f"{key}.parquet")
+    portable = {**q, "scene": os.path.relpath(q["scene"], ROOT)}  # the same key in any clone
+    key = hashlib.sha256(json.dumps(portable, sort_keys=True).encode()).hexdigest()[:12]
+    path = os.path.join(CACHE, f"{q['name']}-{key}.parquet")
     if os.path.exists(path):
         worst = pd.read_parquet(path)
         return worst, int(worst.attrs.get("runs", 0)) or int(json.load(open(path + ".json"))["runs"]), float(json.load(open(path + ".json"))["wall"])
