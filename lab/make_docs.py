@@ -12,14 +12,16 @@ copied by hand. It writes:
 - docs/performance.md, `default-method`: `default_method.py --tables` from
   lab/results/default_method*.csv/json;
 - docs/design.md, `design-vs-brute`: `design_vs_brute.py --tables` from
-  lab/results/design_vs_brute.json.
+  lab/results/design_vs_brute.json;
+- docs/performance.md, `sensitivity-speed`: `sensitivity_speed.py --tables` from
+  lab/results/sensitivity_speed.json.
 
-The last two are the studies' own `--tables` modes, run with .venv/bin/python when it exists
+The last three are the studies' own `--tables` modes, run with .venv/bin/python when it exists
 (else this interpreter).
 Tables that come from runs without a committed result file (docs/stability.md's generated part,
 written by `python -m lab.stability_map`) are not touched. Exits with status 1 if a block's
 markers or a study's table could not be written. `--skip NAME ...` leaves blocks alone
-(`work-precision`, `default-method`, `design-vs-brute`): a study whose results are being made.
+(`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`): a study whose results are being made.
 """
 
 import argparse
@@ -81,7 +83,11 @@ def study_tables_mode(script):
     return done.returncode == 0
 
 
-STUDIES = {"default-method": "default_method.py", "design-vs-brute": "design_vs_brute.py"}
+STUDIES = {
+    "default-method": "default_method.py",
+    "design-vs-brute": "design_vs_brute.py",
+    "sensitivity-speed": "sensitivity_speed.py",
+}
 
 
 def main():
