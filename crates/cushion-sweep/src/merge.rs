@@ -8,18 +8,16 @@
 
 use std::collections::BTreeMap;
 use std::fs;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-
-use arrow_array::{Array, Int64Array, RecordBatch};
-use arrow_schema::SchemaRef;
 
 use crate::atomic::{write_atomic, AtomicFile};
 use crate::error::{io_err, SweepError};
 use crate::out_lock::OutputLock;
-use crate::parquet_io::{count_failed_batch, read_parquet};
-use crate::summary_table::{csv_text, parquet_properties, write_csv_rows};
+
+mod summaries;
+
+use summaries::{merge_summaries, MergedRows};
 
 /// What `cushion merge` was asked.
 #[derive(Clone, Debug, Default)]
@@ -43,45 +41,87 @@ fn cfg(msg: String) -> SweepError {
     SweepError::Config(msg)
 }
 
+/// One shard's output folder and its `provenance.json`.
 struct Shard {
     dir: PathBuf,
     prov: serde_json::Value,
 }
 
+impl Shard {
+    /// Which shard it is (`K` of `--shard K/N`).
+    fn k(&self) -> u64 {
+        self.prov["shard"]["k"].as_u64().unwrap_or(0)
+    }
+}
+
 /// Merge shard outputs.
 pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     let started = Instant::now();
-    if opts.dirs.is_empty() {
+    let mut shards = read_shard_folders(&opts.dirs)?;
+    // The folder named first speaks for the sweep: its name, its number of runs and the
+    // provenance the merged one starts from.
+    let first = shards[0].prov.clone();
+    check_each_shard_once(&shards)?;
+    shards.sort_by_key(Shard::k);
+    let out_dir = output_folder(opts, &first, &shards)?;
+    // One sweep or merge at a time in this folder, until this function returns.
+    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
+    let mut warnings: Vec<String> = lock.warning(&out_dir).into_iter().collect();
+
+    let n_runs = first["n_runs_total"].as_u64().unwrap_or(0);
+    let rows = merge_summaries(&shards, &out_dir, n_runs)?;
+    merge_trajectories(&shards, &out_dir)?;
+    copy_sweep_file(&shards, &out_dir)?;
+    write_provenance(&out_dir, &first, &shards, &rows, started)?;
+    if let Err(e) = crate::report::write_report(&out_dir) {
+        warnings.push(format!("report charts not written: {e}"));
+    }
+    Ok(MergeOutcome {
+        out_dir,
+        runs: rows.count,
+        runs_failed: rows.failed,
+        warnings,
+    })
+}
+
+/// Each folder's provenance, in the order given; every folder must be a finished sweep output.
+fn read_shard_folders(dirs: &[PathBuf]) -> Result<Vec<Shard>, SweepError> {
+    if dirs.is_empty() {
         return Err(cfg("merge: give at least one sweep output folder".into()));
     }
-    let mut shards = Vec::new();
-    for d in &opts.dirs {
-        let p = d.join("provenance.json");
-        let bytes = fs::read(&p).map_err(|_| {
-            cfg(format!(
-                "{}: not a finished sweep output (no provenance.json; an unfinished shard needs `cushion sweep --resume`)",
-                d.display()
-            ))
-        })?;
-        let prov: serde_json::Value = serde_json::from_slice(&bytes)
-            .map_err(|e| cfg(format!("{}: unreadable: {e}", p.display())))?;
-        if !d.join("summary.parquet").exists() {
-            return Err(cfg(format!("{}: no summary.parquet", d.display())));
-        }
-        shards.push(Shard {
-            dir: d.clone(),
-            prov,
-        });
+    dirs.iter().map(|d| read_shard_folder(d)).collect()
+}
+
+fn read_shard_folder(d: &Path) -> Result<Shard, SweepError> {
+    let p = d.join("provenance.json");
+    let bytes = fs::read(&p).map_err(|_| {
+        cfg(format!(
+            "{}: not a finished sweep output (no provenance.json; an unfinished shard needs `cushion sweep --resume`)",
+            d.display()
+        ))
+    })?;
+    let prov: serde_json::Value = serde_json::from_slice(&bytes)
+        .map_err(|e| cfg(format!("{}: unreadable: {e}", p.display())))?;
+    if !d.join("summary.parquet").exists() {
+        return Err(cfg(format!("{}: no summary.parquet", d.display())));
     }
-    let first = &shards[0].prov.clone();
-    let n = first["shard"]["n"].as_u64().unwrap_or(1);
-    let n_runs = first["n_runs_total"].as_u64().unwrap_or(0);
+    Ok(Shard {
+        dir: d.to_path_buf(),
+        prov,
+    })
+}
+
+/// The folders hold one sweep cut into the same `N` shards, and each shard `1..=N` exactly once
+/// (the messages name the first folder given as the one the others differ from).
+fn check_each_shard_once(shards: &[Shard]) -> Result<(), SweepError> {
+    let first = &shards[0];
+    let n = first.prov["shard"]["n"].as_u64().unwrap_or(1);
     let mut seen: BTreeMap<u64, PathBuf> = BTreeMap::new();
-    for s in &shards {
-        if s.prov["sweep_digest"] != first["sweep_digest"] {
+    for s in shards {
+        if s.prov["sweep_digest"] != first.prov["sweep_digest"] {
             return Err(cfg(format!(
                 "{} and {} hold different sweeps (sweep file or base scene differ)",
-                shards[0].dir.display(),
+                first.dir.display(),
                 s.dir.display()
             )));
         }
@@ -90,10 +130,10 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
                 "{}: shard of {} but {} is a shard of {n}",
                 s.dir.display(),
                 s.prov["shard"]["n"],
-                shards[0].dir.display()
+                first.dir.display()
             )));
         }
-        let k = s.prov["shard"]["k"].as_u64().unwrap_or(0);
+        let k = s.k();
         if let Some(other) = seen.insert(k, s.dir.clone()) {
             return Err(cfg(format!(
                 "shard {k}/{n} given twice: {} and {}",
@@ -109,15 +149,21 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     if !missing.is_empty() {
         return Err(cfg(format!("missing shard(s): {}", missing.join(", "))));
     }
-    // Shards in k order.
-    shards.sort_by_key(|s| s.prov["shard"]["k"].as_u64().unwrap_or(0));
+    Ok(())
+}
 
+/// The merged output's folder (default `runs/<sweep name>`), which must not be a shard's.
+fn output_folder(
+    opts: &MergeOptions,
+    first: &serde_json::Value,
+    shards: &[Shard],
+) -> Result<PathBuf, SweepError> {
     let name = first["sweep_name"].as_str().unwrap_or("merged").to_string();
     let out_dir = opts
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from("runs").join(&name));
-    for s in &shards {
+    for s in shards {
         if same_dir(&s.dir, &out_dir) {
             return Err(cfg(format!(
                 "--out {} is one of the shards; choose another folder",
@@ -125,163 +171,19 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
             )));
         }
     }
-    // One sweep or merge at a time in this folder, until this function returns.
-    let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
-    let mut warnings: Vec<String> = lock.warning(&out_dir).into_iter().collect();
+    Ok(out_dir)
+}
 
-    // Summaries: a k-way merge by run number, streaming.
-    let mut readers = Vec::new();
-    let mut schema: Option<SchemaRef> = None;
-    for s in &shards {
-        let p = s.dir.join("summary.parquet");
-        let mut it = read_parquet(&p)?.peekable();
-        if let Some(Ok(b)) = it.peek() {
-            match &schema {
-                None => schema = Some(b.schema()),
-                Some(sc) if sc.fields() != b.schema().fields() => {
-                    return Err(cfg(format!(
-                        "{}: columns differ from the other shards",
-                        p.display()
-                    )))
-                }
-                _ => {}
-            }
-        }
-        readers.push(it);
+fn same_dir(a: &Path, b: &Path) -> bool {
+    match (fs::canonicalize(a), fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => a == b,
     }
-    let Some(schema) = schema.or_else(|| read_schema(&shards[0].dir.join("summary.parquet")))
-    else {
-        return Err(io_err("summary.parquet", "no schema"));
-    };
+}
 
-    let csv_path = out_dir.join("summary.csv");
-    let mut csv = AtomicFile::create(&csv_path).map_err(|e| io_err(csv_path.display(), e))?;
-    let header: Vec<String> = schema.fields().iter().map(|f| csv_text(f.name())).collect();
-    writeln!(csv.writer(), "{}", header.join(",")).map_err(|e| io_err(csv_path.display(), e))?;
-    let pq_path = out_dir.join("summary.parquet");
-    let mut pq = AtomicFile::create(&pq_path).map_err(|e| io_err(pq_path.display(), e))?;
-    let mut writer =
-        parquet::arrow::ArrowWriter::try_new(pq.take(), schema.clone(), Some(parquet_properties()))
-            .map_err(|e| io_err(pq_path.display(), e))?;
-
-    struct Cursor {
-        batch: Option<RecordBatch>,
-        runs: Option<Int64Array>,
-        row: usize,
-        slot: usize,
-    }
-    let mut cursors: Vec<Cursor> = Vec::new();
-    let mut slots: Vec<RecordBatch> = Vec::new();
-    let load = |it: &mut dyn Iterator<Item = Result<RecordBatch, SweepError>>| -> Result<Option<RecordBatch>, SweepError> {
-        loop {
-            match it.next() {
-                None => return Ok(None),
-                Some(b) => {
-                    let b = b?;
-                    if b.num_rows() > 0 {
-                        return Ok(Some(b));
-                    }
-                }
-            }
-        }
-    };
-    let runs_of = |b: &RecordBatch| -> Result<Int64Array, SweepError> {
-        b.column_by_name("run")
-            .and_then(|c| c.as_any().downcast_ref::<Int64Array>().cloned())
-            .ok_or_else(|| io_err("summary.parquet", "no `run` column"))
-    };
-    for r in readers.iter_mut() {
-        let b = load(r)?;
-        let runs = b.as_ref().map(&runs_of).transpose()?;
-        let slot = slots.len();
-        if let Some(b) = &b {
-            slots.push(b.clone());
-        }
-        cursors.push(Cursor {
-            batch: b,
-            runs,
-            row: 0,
-            slot,
-        });
-    }
-    let mut picks: Vec<(usize, usize)> = Vec::new();
-    let mut last_run: Option<i64> = None;
-    let mut count: u64 = 0;
-    let mut failed = 0usize;
-    const BLOCK: usize = 4096;
-    let mut emit = |slots: &[RecordBatch],
-                    picks: &[(usize, usize)],
-                    failed: &mut usize|
-     -> Result<(), SweepError> {
-        if picks.is_empty() {
-            return Ok(());
-        }
-        let refs: Vec<&RecordBatch> = slots.iter().collect();
-        let out = arrow_select::interleave::interleave_record_batch(&refs, picks)
-            .map_err(|e| io_err("merge", e))?;
-        *failed += count_failed_batch(&out);
-        write_csv_rows(csv.writer(), &out).map_err(|e| io_err(csv_path.display(), e))?;
-        writer
-            .write(&out)
-            .map_err(|e| io_err(pq_path.display(), e))?;
-        Ok(())
-    };
-    loop {
-        let mut best: Option<(usize, i64)> = None;
-        for (i, c) in cursors.iter().enumerate() {
-            if let Some(runs) = &c.runs {
-                let r = runs.value(c.row);
-                if best.is_none_or(|(_, b)| r < b) {
-                    best = Some((i, r));
-                }
-            }
-        }
-        let Some((i, run)) = best else { break };
-        if last_run == Some(run) {
-            return Err(cfg(format!("run {run} appears twice in the shards")));
-        }
-        last_run = Some(run);
-        count += 1;
-        let c = &mut cursors[i];
-        picks.push((c.slot, c.row));
-        c.row += 1;
-        if c.row == c.batch.as_ref().map(|b| b.num_rows()).unwrap_or(0) {
-            let b = load(&mut readers[i])?;
-            c.runs = b.as_ref().map(&runs_of).transpose()?;
-            c.row = 0;
-            if let Some(b) = &b {
-                c.slot = slots.len();
-                slots.push(b.clone());
-            }
-            c.batch = b;
-        }
-        if picks.len() >= BLOCK {
-            emit(&slots, &picks, &mut failed)?;
-            picks.clear();
-            // Keep only the batches still in use.
-            slots.clear();
-            for c in cursors.iter_mut() {
-                if let Some(b) = &c.batch {
-                    c.slot = slots.len();
-                    slots.push(b.clone());
-                }
-            }
-        }
-    }
-    emit(&slots, &picks, &mut failed)?;
-    if count != n_runs {
-        return Err(cfg(format!(
-            "the shards hold {count} runs, the sweep has {n_runs}: a shard is incomplete"
-        )));
-    }
-    let w = writer
-        .into_inner()
-        .map_err(|e| io_err(pq_path.display(), e))?;
-    pq.commit_with(w)
-        .map_err(|e| io_err(pq_path.display(), e))?;
-    csv.commit().map_err(|e| io_err(csv_path.display(), e))?;
-
-    // Trajectories, merged by run number.
+/// The shards' `trajectories.mcap`, merged by run number; none when no shard recorded any (and
+/// then an old one in the output folder is removed).
+fn merge_trajectories(shards: &[Shard], out_dir: &Path) -> Result<(), SweepError> {
     let traj_path = out_dir.join("trajectories.mcap");
     let files: Vec<Vec<u8>> = shards
         .iter()
@@ -296,80 +198,7 @@ pub fn merge(opts: &MergeOptions) -> Result<MergeOutcome, SweepError> {
     } else {
         merge_mcap(&traj_path, &files)?;
     }
-
-    let sweep_copy = shards[0].dir.join("sweep.toml");
-    if let Ok(text) = fs::read(&sweep_copy) {
-        write_atomic(&out_dir.join("sweep.toml"), &text)
-            .map_err(|e| io_err(out_dir.display(), e))?;
-    }
-    let mut prov = first.clone();
-    let wall: f64 = shards
-        .iter()
-        .filter_map(|s| s.prov["wall_seconds"].as_f64())
-        .sum();
-    prov["shard"] = serde_json::json!({ "k": 1, "n": 1 });
-    prov["runs_in_output"] = serde_json::json!(count);
-    prov["runs_failed"] = serde_json::json!(failed);
-    prov["wall_seconds"] = serde_json::json!(wall);
-    // every invocation of every shard (a shard's own wall time where it predates the fields)
-    let all_wall: f64 = shards
-        .iter()
-        .filter_map(|s| {
-            s.prov["wall_seconds_all_invocations"]
-                .as_f64()
-                .or(s.prov["wall_seconds"].as_f64())
-        })
-        .sum();
-    let invocations: u64 = shards
-        .iter()
-        .map(|s| s.prov["invocations"].as_u64().unwrap_or(1))
-        .sum();
-    prov["wall_seconds_all_invocations"] = serde_json::json!(all_wall);
-    prov["invocations"] = serde_json::json!(invocations);
-    prov["merged_from"] = serde_json::Value::Array(
-        shards
-            .iter()
-            .map(|s| {
-                serde_json::json!({
-                    "dir": s.dir.display().to_string(),
-                    "shard": s.prov["shard"],
-                    "threads": s.prov["threads"],
-                    "wall_seconds": s.prov["wall_seconds"],
-                    "git_commit": s.prov["git_commit"],
-                })
-            })
-            .collect(),
-    );
-    prov["merge_seconds"] = serde_json::json!(started.elapsed().as_secs_f64());
-    write_atomic(
-        &out_dir.join("provenance.json"),
-        serde_json::to_string_pretty(&prov)
-            .unwrap_or_default()
-            .as_bytes(),
-    )
-    .map_err(|e| io_err(out_dir.display(), e))?;
-    if let Err(e) = crate::report::write_report(&out_dir) {
-        warnings.push(format!("report charts not written: {e}"));
-    }
-    Ok(MergeOutcome {
-        out_dir,
-        runs: count,
-        runs_failed: failed,
-        warnings,
-    })
-}
-
-fn same_dir(a: &Path, b: &Path) -> bool {
-    match (fs::canonicalize(a), fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => a == b,
-    }
-}
-
-fn read_schema(path: &Path) -> Option<SchemaRef> {
-    let f = fs::File::open(path).ok()?;
-    let b = parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder::try_new(f).ok()?;
-    Some(b.schema().clone())
+    Ok(())
 }
 
 /// The run number of a `/run/<n>/...` topic.
@@ -429,4 +258,71 @@ fn merge_mcap(path: &Path, files: &[Vec<u8>]) -> Result<(), SweepError> {
         w.finish().map_err(|e| io_err(path.display(), e))?;
     }
     f.commit().map_err(|e| io_err(path.display(), e))
+}
+
+/// The sweep file's text, as shard 1 kept it (when it did).
+fn copy_sweep_file(shards: &[Shard], out_dir: &Path) -> Result<(), SweepError> {
+    let sweep_copy = shards[0].dir.join("sweep.toml");
+    if let Ok(text) = fs::read(&sweep_copy) {
+        write_atomic(&out_dir.join("sweep.toml"), &text)
+            .map_err(|e| io_err(out_dir.display(), e))?;
+    }
+    Ok(())
+}
+
+/// `provenance.json` of the merged output: the first folder's, as one unsharded sweep, with the
+/// merged counts, the wall times and invocations of every shard, and which folders it joined.
+fn write_provenance(
+    out_dir: &Path,
+    first: &serde_json::Value,
+    shards: &[Shard],
+    rows: &MergedRows,
+    started: Instant,
+) -> Result<(), SweepError> {
+    let mut prov = first.clone();
+    let wall: f64 = shards
+        .iter()
+        .filter_map(|s| s.prov["wall_seconds"].as_f64())
+        .sum();
+    prov["shard"] = serde_json::json!({ "k": 1, "n": 1 });
+    prov["runs_in_output"] = serde_json::json!(rows.count);
+    prov["runs_failed"] = serde_json::json!(rows.failed);
+    prov["wall_seconds"] = serde_json::json!(wall);
+    // every invocation of every shard (a shard's own wall time where it predates the fields)
+    let all_wall: f64 = shards
+        .iter()
+        .filter_map(|s| {
+            s.prov["wall_seconds_all_invocations"]
+                .as_f64()
+                .or(s.prov["wall_seconds"].as_f64())
+        })
+        .sum();
+    let invocations: u64 = shards
+        .iter()
+        .map(|s| s.prov["invocations"].as_u64().unwrap_or(1))
+        .sum();
+    prov["wall_seconds_all_invocations"] = serde_json::json!(all_wall);
+    prov["invocations"] = serde_json::json!(invocations);
+    prov["merged_from"] = serde_json::Value::Array(
+        shards
+            .iter()
+            .map(|s| {
+                serde_json::json!({
+                    "dir": s.dir.display().to_string(),
+                    "shard": s.prov["shard"],
+                    "threads": s.prov["threads"],
+                    "wall_seconds": s.prov["wall_seconds"],
+                    "git_commit": s.prov["git_commit"],
+                })
+            })
+            .collect(),
+    );
+    prov["merge_seconds"] = serde_json::json!(started.elapsed().as_secs_f64());
+    write_atomic(
+        &out_dir.join("provenance.json"),
+        serde_json::to_string_pretty(&prov)
+            .unwrap_or_default()
+            .as_bytes(),
+    )
+    .map_err(|e| io_err(out_dir.display(), e))
 }
