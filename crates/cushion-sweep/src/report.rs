@@ -348,3 +348,13 @@ fn median(v: &mut [f64]) -> f64 {
 type GroupStats = (f64, f64, f64, f64, f64, f64);
 
 type Draw<E> = Result<(), DrawingAreaErrorKind<E>>;
+
+/// A part of a report chart's SVG drawing.
+type Area<'b> = DrawingArea<SVGBackend<'b>, plotters::coord::Shift>;
+
+/// A chart on a part of the drawing, with numbers on both axes.
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
