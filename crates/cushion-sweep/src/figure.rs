@@ -14,6 +14,10 @@ use std::path::Path;
 use cushion_model::{Summary, Trajectory, TrajectoryPoint};
 use plotters::prelude::*;
 
+mod panel;
+
+use panel::draw_panel;
+
 const ROBOT: RGBColor = RGBColor(31, 119, 180);
 const TOOL: RGBColor = RGBColor(255, 127, 14);
 const OBJECT: RGBColor = RGBColor(44, 160, 44);
@@ -155,167 +159,6 @@ pub fn write_svg(
 
 fn draw_err<E: std::error::Error + Send + Sync + 'static>(e: E) -> io::Error {
     io::Error::other(format!("drawing the figure: {e}"))
-}
-
-/// Finite (min, max) of the panel's curves, padded; `None` when nothing is finite.
-fn y_range(panel: &Panel, pts: &[TrajectoryPoint]) -> Option<(f64, f64)> {
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
-    for c in &panel.curves {
-        for p in pts {
-            let v = (c.value)(p);
-            if v.is_finite() {
-                lo = lo.min(v);
-                hi = hi.max(v);
-            }
-        }
-    }
-    if !lo.is_finite() {
-        return None;
-    }
-    let span = hi - lo;
-    let pad = if span > 0.0 {
-        0.06 * span
-    } else {
-        (lo.abs() * 0.1).max(1e-3)
-    };
-    Some((lo - pad, hi + pad))
-}
-
-/// Width in pixels of the legend column to the right of each panel.
-const LEGEND_WIDTH: u32 = 240;
-
-fn draw_panel<DB: DrawingBackend>(
-    area: &DrawingArea<DB, plotters::coord::Shift>,
-    panel: &Panel,
-    pts: &[TrajectoryPoint],
-    (t0, t1): (f64, f64),
-    summary: &Summary,
-) -> io::Result<()>
-where
-    DB::ErrorType: 'static,
-{
-    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| {
-        io::Error::other(format!("drawing the figure: {e:?}"))
-    };
-    let (w, _) = area.dim_in_pixel();
-    let (plot_area, legend_area) = area.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
-    let range = y_range(panel, pts);
-    let (y0, y1) = range.unwrap_or((0.0, 1.0));
-    let mut chart = ChartBuilder::on(&plot_area)
-        .caption(panel.caption, ("sans-serif", 17).into_font())
-        .margin_left(10)
-        .margin_right(15)
-        .margin_top(5)
-        .margin_bottom(5)
-        .x_label_area_size(40)
-        .y_label_area_size(75)
-        .build_cartesian_2d(t0..t1, y0..y1)
-        .map_err(err)?;
-    chart
-        .configure_mesh()
-        .x_desc("time [ms]")
-        .y_desc(panel.y_desc)
-        .x_labels(12)
-        .y_labels(6)
-        .light_line_style(RGBColor(235, 235, 235))
-        .bold_line_style(RGBColor(205, 205, 205))
-        .label_style(("sans-serif", 13))
-        .axis_desc_style(("sans-serif", 14))
-        .x_label_formatter(&|v| format_tick(*v))
-        .y_label_formatter(&|v| format_tick(*v))
-        .draw()
-        .map_err(err)?;
-
-    // Legend entries: (label, colour, dashed).
-    let mut legend: Vec<(String, RGBColor, bool)> = Vec::new();
-    if range.is_none() {
-        let x = t0 + 0.35 * (t1 - t0);
-        chart
-            .draw_series(std::iter::once(Text::new(
-                panel.absent,
-                (x, 0.55),
-                ("sans-serif", 18).into_font().color(&BRAKE),
-            )))
-            .map_err(err)?;
-    } else {
-        for (k, c) in panel.curves.iter().enumerate() {
-            // The first curve is drawn wider, so a curve lying on it (rigid module: tool on
-            // flange) still shows both.
-            let width = if k == 0 && panel.curves.len() > 1 {
-                3
-            } else {
-                2
-            };
-            // Break the line where the value is absent (NaN).
-            let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
-            for p in pts {
-                let v = (c.value)(p);
-                if v.is_finite() {
-                    segments.last_mut().unwrap().push((p.t * 1e3, v));
-                } else if !segments.last().unwrap().is_empty() {
-                    segments.push(Vec::new());
-                }
-            }
-            if segments.iter().all(|s| s.is_empty()) {
-                legend.push((format!("{} (n/a)", c.label), RGBColor(190, 190, 190), false));
-                continue;
-            }
-            let bucket = (t1 - t0) * 3.0 / (SIZE.0 - LEGEND_WIDTH - 100) as f64;
-            for seg in segments.into_iter().filter(|s| !s.is_empty()) {
-                let seg = decimate(&seg, bucket);
-                chart
-                    .draw_series(LineSeries::new(seg, c.color.stroke_width(width)))
-                    .map_err(err)?;
-            }
-            legend.push((c.label.to_string(), c.color, false));
-        }
-    }
-
-    for (t, label, color) in [
-        (summary.t_detect, "detection", DETECT),
-        (summary.t_brake, "brake start", BRAKE),
-    ] {
-        let Some(t) = t.filter(|t| t.is_finite()) else {
-            continue;
-        };
-        let x = t * 1e3;
-        if x < t0 || x > t1 {
-            continue;
-        }
-        chart
-            .draw_series(DashedLineSeries::new(
-                vec![(x, y0), (x, y1)],
-                7,
-                5,
-                color.stroke_width(2),
-            ))
-            .map_err(err)?;
-        legend.push((format!("{label} {}", format_ms(t)), color, true));
-    }
-
-    // The legend column: a sample line and the label per entry, top-aligned with the plot.
-    let font = ("sans-serif", 13).into_font().color(&BLACK);
-    for (i, (label, color, dashed)) in legend.iter().enumerate() {
-        let y = 40 + 22 * i as i32;
-        let style = color.stroke_width(2);
-        if *dashed {
-            legend_area
-                .draw(&PathElement::new(vec![(4, y), (12, y)], style))
-                .map_err(err)?;
-            legend_area
-                .draw(&PathElement::new(vec![(17, y), (25, y)], style))
-                .map_err(err)?;
-        } else {
-            legend_area
-                .draw(&PathElement::new(vec![(4, y), (28, y)], style))
-                .map_err(err)?;
-        }
-        legend_area
-            .draw(&Text::new(label.as_str(), (36, y - 7), font.clone()))
-            .map_err(err)?;
-    }
-    Ok(())
 }
 
 /// Min-max decimation: per time bucket of `width` (about 3 pixels), keep the points of least
