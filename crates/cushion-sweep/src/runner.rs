@@ -197,6 +197,8 @@ struct ChunkList {
 }
 
 impl<'a> FolderSweep<'a> {
+    /// The output folder is `opts.out`, by default `runs/<sweep name>` (for a shard
+    /// `runs/<sweep name>-shard-K-of-N`).
     fn new(
         plan: Plan,
         opts: &'a SweepOptions,
