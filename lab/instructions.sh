@@ -6,8 +6,8 @@
 # Per run = (count for 200 runs - count for 0 runs) / 200, so start-up and parsing drop out.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q -p cushion-model --example loop_scene
-bin=target/release/examples/loop_scene
+cargo build --release -q -p cushion-studies --bin loop_scene
+bin=${CARGO_TARGET_DIR:-target}/release/loop_scene
 count() {
     valgrind --tool=cachegrind --cache-sim=no --cachegrind-out-file=/dev/null "$@" 2>&1 \
         | sed -n 's/.*I *refs: *//p' | tr -d ','

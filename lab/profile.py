@@ -29,8 +29,9 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-LOOP = os.path.join(ROOT, "target/release/examples/loop_scene")
-CLI = os.path.join(ROOT, "target/release/cushion")
+TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"))
+LOOP = os.path.join(TARGET, "release", "loop_scene")
+CLI = os.path.join(TARGET, "release", "cushion")
 DT70 = "sweeps/scenes/paper-hydraulic-dt70.toml"
 CASES = [
     # (label, scene, settings, runs under valgrind, runs timed)
@@ -90,7 +91,7 @@ def case(label, scene, sets, runs, timed):
 
 
 def main():
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-model", "--example", "loop_scene"],
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
                    cwd=ROOT, check=True)
     subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
     rows = [case(*c) for c in CASES]

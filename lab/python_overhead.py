@@ -15,6 +15,7 @@
 
 from __future__ import annotations
 
+import os
 import statistics
 import subprocess
 import sys
@@ -25,13 +26,14 @@ from pathlib import Path
 import cushion
 
 ROOT = Path(__file__).resolve().parents[1]
+TARGET = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
 ROUNDS = int(sys.argv[1]) if len(sys.argv) > 1 else 7
 TINY = {"t_end": 1e-6}
 
 
 def rust_us(n: int = 200_000) -> float:
     out = subprocess.run(
-        [str(ROOT / "target/release/examples/loop_scene"), str(n), "t_end=1e-6"],
+        [str(TARGET / "release" / "loop_scene"), str(n), "t_end=1e-6"],
         capture_output=True, text=True, check=True,
     )
     return float(out.stdout.split()[0])
@@ -69,7 +71,7 @@ def overhead() -> None:
 
 def sweep_throughput() -> None:
     design = ROOT / "sweeps/design-space.toml"
-    cli = ROOT / "target/release/cushion"
+    cli = TARGET / "release" / "cushion"
     times: dict[str, list[float]] = {"cli": [], "python": [], "python out=": []}
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(max(3, ROUNDS // 2)):
@@ -89,7 +91,7 @@ def sweep_throughput() -> None:
 
 
 if __name__ == "__main__":
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-model", "--example", "loop_scene"], cwd=ROOT, check=True)
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"], cwd=ROOT, check=True)
     subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
     overhead()
     sweep_throughput()

@@ -13,7 +13,7 @@ writes it); the sensor is a terminal event, and the robot's kinks are segment bo
 
 Prints time per run, right-hand-side evaluations, steps per segment of the robot's profile, and
 the results to compare with
-`cargo run -p cushion-model --example run_scene -- sweeps/scenes/paper-hydraulic-dt70.toml`.
+`cargo run -p cushion-studies --bin run_scene -- sweeps/scenes/paper-hydraulic-dt70.toml`.
 `--method` takes any `solve_ivp` method (RK45, DOP853, Radau, BDF, LSODA): the implicit ones
 show whether this scene is stiff enough for an implicit method to take fewer steps. `--rtol`
 sets rtol (default 1e-6) and atol = rtol / 1000, the scene's own ratio.

@@ -9,9 +9,9 @@
 # of object and end-stop impacts equal the reference's.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release -q -p cushion-model --example tolerance_row --example loop_scene
-row=target/release/examples/tolerance_row
-loop=target/release/examples/loop_scene
+cargo build --release -q -p cushion-studies --bin tolerance_row --bin loop_scene
+row=${CARGO_TARGET_DIR:-target}/release/tolerance_row
+loop=${CARGO_TARGET_DIR:-target}/release/loop_scene
 count() {
     valgrind --tool=cachegrind --cache-sim=no --cachegrind-out-file=/dev/null "$@" 2>&1 \
         | sed -n 's/.*I *refs: *//p' | tr -d ','

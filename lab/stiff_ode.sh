@@ -6,7 +6,7 @@
 #   bash lab/stiff_ode.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo run --release -q -p cushion-ode --example stiff_ode
+cargo run --release -q -p cushion-studies --bin stiff_ode
 if [ -x .venv/bin/python ] && .venv/bin/python -c 'import scipy' 2>/dev/null; then
     echo
     .venv/bin/python -m lab.stiff_scipy

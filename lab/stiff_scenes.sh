@@ -11,9 +11,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 rounds=${1:-5}
 n=${2:-20}
-cargo build --release -q -p cushion-model --example loop_scene
+cargo build --release -q -p cushion-studies --bin loop_scene
 cargo build --release -q --bin cushion
-loop=target/release/examples/loop_scene
+target=${CARGO_TARGET_DIR:-target}
+loop=$target/release/loop_scene
 scene=sweeps/scenes/paper-hydraulic-dt70.toml
 printf '%-14s %-6s %-5s %10s %9s %9s %7s %8s  %s\n' scene method rtol 'µs/run' rhs_evals jacobians LUs switches status
 for variant in "steel-stops stops.stiffness=1e11" "steel-contact object.contact_stiffness=1e10" \
@@ -27,7 +28,7 @@ for variant in "steel-stops stops.stiffness=1e11" "steel-contact object.contact_
             times=$(for _ in $(seq "$rounds"); do "$loop" "$n" "$scene" "${args[@]}" | awk '{print $1}'; done)
             median=$(printf '%s\n' $times | sort -g | awk '{a[NR] = $1} END {print a[int((NR + 1) / 2)]}')
             sets=(); for a in "${args[@]}"; do sets+=(--set "$a"); done
-            target/release/cushion simulate "$scene" "${sets[@]}" --json | python3 -c "
+            "$target/release/cushion" simulate "$scene" "${sets[@]}" --json | python3 -c "
 import json, sys
 d = json.load(sys.stdin); s = d['stats']
 print('%-14s %-6s %-5s %10s %9d %9d %7d %8d  %s' % ('$name', '$method', '$rtol', '$median', s['rhs_evals'],

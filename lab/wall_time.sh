@@ -9,8 +9,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 rounds=${1:-15}
 n=${2:-300}
-cargo build --release -q -p cushion-model --example loop_scene
-bin=target/release/examples/loop_scene
+cargo build --release -q -p cushion-studies --bin loop_scene
+bin=${CARGO_TARGET_DIR:-target}/release/loop_scene
 scenes=(sweeps/scenes/paper-*.toml)
 declare -A times
 for _ in $(seq "$rounds"); do

@@ -24,7 +24,7 @@ Scenes: the five paper scenes (sweeps/scenes/paper-*.toml); `steel-stops` (paper
 with stops.stiffness = 1e11); `compressible` (paper-hydraulic-dt70 with hydraulic.bulk_modulus =
 1.5e9; explicit methods are not run there: "failed (explicit)"); `oscillator`, a damped linear
 oscillator x'' + 2 zeta w x' + w^2 x = 0 with a closed form, which the engine's integrator runs
-alone (`crates/cushion-ode/examples/oscillator.rs`, built by this script: no events, no
+alone (`lab/studies/src/bin/oscillator.rs`, built by this script: no events, no
 observers, the final state only, timed in-process in Rust).
 
 Error measures: object_final_velocity (m/s), peak_robot_force (N), t_detect (s), and
@@ -146,16 +146,16 @@ def osc_rhs(t, y):
     return [y[1], -2 * OSC_ZETA * OSC_W * y[1] - OSC_W**2 * y[0]]
 
 
-OSC_EXAMPLE = os.path.join(ROOT, "target", "release", "examples", "oscillator")
+OSC_BIN = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "oscillator")
 
 
 def engine_oscillator(settings):
     """The integrator alone on the oscillator: {(method, label): result dict} for settings
-    [(method, label, dict(rtol=..) or dict(h=..))], from one run of the Rust example."""
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-ode", "--example", "oscillator"],
+    [(method, label, dict(rtol=..) or dict(h=..))], from one run of the Rust study binary."""
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "oscillator"],
                    cwd=ROOT, check=True)
     argv = [f"{m}={'h%r' % st['h'] if 'h' in st else repr(st['rtol'])}" for m, _, st in settings]
-    out = subprocess.run([OSC_EXAMPLE, repr(OSC_W), repr(OSC_ZETA), repr(OSC_T), *argv],
+    out = subprocess.run([OSC_BIN, repr(OSC_W), repr(OSC_ZETA), repr(OSC_T), *argv],
                          capture_output=True, text=True, check=True).stdout.split("\n")
     res = {}
     for (m, label, _), line in zip(settings, out):

@@ -2,7 +2,7 @@
 //! preload, or held there by dry friction. No error estimate limits the steps there, so DOP853
 //! steps far past its stability boundary (`h |lambda|` 390 to 1,000 against 6.39), and the
 //! states its dense output gives inside such a step are amplified rounding. Three of 2,000 wide
-//! random scenes (`examples/wide_scenes 2000 --method dop853`, scenes in `tests/scenes/`) came
+//! random scenes (`lab/studies`: `wide_scenes 2000 --method dop853`, scenes in `tests/scenes/`) came
 //! out wrong through it before the loop took such steps again (`cushion-ode`, `step_guard.rs`: the
 //! run's first step counts as a jump for the stability guard; `events.rs`, "Crossings on a
 //! dense output that is not stable"): a peak robot force of 370 N where the true one is 4e-10

@@ -314,7 +314,7 @@ fn a_touch_right_after_a_contact_end_is_found() {
 
 #[test]
 fn a_slip_that_touches_zero_and_turns_back_goes_on() {
-    // A wide random scene (`examples/wide_scenes 2000`, scene 396: dry friction 1.44 N on a
+    // A wide random scene (`lab/studies`: `wide_scenes 2000`, scene 396: dry friction 1.44 N on a
     // 34 g tool). The tool's slip speed rises to its stick test and turns back: holding it
     // would take 1.458 N, and the friction keeps its direction. Under Rodas that test ran at
     // every step within 1e-16 s of the last, until the step limit; the run now ends `ok`, its

@@ -3,9 +3,9 @@
 //! (`cushion-ode`, `restart_steps.rs`). When that first step was cut short by the next event
 //! near its start, the length it taught was its whole attempt, not the part the run kept
 //! (the loop, `solve.rs`, passes the kept part). Under DOPRI5 one of 20,000 wide scenes
-//! (`examples/wide_scenes 20000 4242`) missed a stick of the tool that way and came out wrong.
-//! Under Rodas two of 20,000 wide corner scenes
-//! (`examples/wide_scenes 20000 4242 --corners --method rodas`; the scenes in `tests/scenes/`)
+//! (`wide_scenes 20000 4242`, a study binary of `lab/studies`) missed a stick of the tool that
+//! way and came out wrong. Under Rodas two of 20,000 wide corner scenes
+//! (`wide_scenes 20000 4242 --corners --method rodas`; the scenes in `tests/scenes/`)
 //! then tried a first step of 13 ms, or one grown at every recurrence to 0.57 s, found the next
 //! event picoseconds into it, on an event function that sits at zero to within rounding, and
 //! did so again after every restart until the million-step limit. Each scene is checked

@@ -15,7 +15,8 @@ use super::ringing::Ringing;
 /// Largest ringing amplitude handed to the closed form, as a fraction of the holding stop's
 /// depth at equilibrium, at `rtol`: `0.3 sqrt(rtol / 1e-6)` within `[0.003, 0.3]`. The closed
 /// form's error grows with it (`ringing.rs`); at 0.3 and rtol 1e-6 it changes the summary of the
-/// paper scenes by less than the integration error itself (`examples/ringing_tail_check.rs`).
+/// paper scenes by less than the integration error itself (the study binary `ringing_tail_check`,
+/// `lab/studies/src/bin/ringing_tail_check.rs`).
 pub(crate) fn max_amplitude(rtol: f64) -> f64 {
     (0.3 * (rtol / 1e-6).sqrt()).clamp(0.003, 0.3)
 }
@@ -51,7 +52,7 @@ pub(crate) struct RingingTail {
 /// `eps = a0 / depth` and orifice damping ratio `zeta_q`: the shape's first-order error
 /// (4.6e-3 eps measured in `ringing.rs`'s tests), the phase drift of the stiffness nonlinearity
 /// (0.2-0.3 eps^2 rad measured on the paper's stop) and of strong orifice damping (about
-/// zeta_q^2, `examples/ringing_tail_check.rs`); each doubled or more.
+/// zeta_q^2, `lab/studies/src/bin/ringing_tail_check.rs`); each doubled or more.
 pub(super) fn relative_error(eps: f64, zeta_q: f64) -> f64 {
     0.01 * eps + 0.5 * eps * eps + 3.0 * zeta_q * zeta_q
 }

@@ -25,8 +25,8 @@ pub fn run_ok(s: &Scene) -> Summary {
     r
 }
 
-/// `tests/scenes/NAME.toml` (scenes kept for a test, most drawn by the wide-scene examples) with
-/// `sets` applied.
+/// `tests/scenes/NAME.toml` (scenes kept for a test, most drawn by the wide-scene study binaries
+/// of `lab/studies`) with `sets` applied.
 pub fn kept_scene(name: &str, sets: &[(&str, &str)]) -> Scene {
     let p = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/scenes")

@@ -8,9 +8,7 @@
 //! least 3), with no
 //! events, no observers and the final state only: what the integrator costs on its own.
 
-mod support;
-
-use support::wall_time;
+use cushion_studies::timing::wall_time;
 
 use cushion_ode::{solve, Matrix, Method, OdeSystem, Solution, SolverOptions, State, Tolerance};
 

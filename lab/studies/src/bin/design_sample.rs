@@ -4,15 +4,14 @@
 #![allow(clippy::field_reassign_with_default)]
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene};
-
-mod support;
+use cushion_studies::{draw_module_axes, Uniform};
 
 fn main() {
     let n: usize = std::env::args()
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(2000);
-    let mut u = support::Uniform::new(0x2545F4914F6CDD1Du64);
+    let mut u = Uniform::new(0x2545F4914F6CDD1Du64);
     let mut counts = std::collections::BTreeMap::new();
     let mut worst: (f64, String) = (0.0, String::new());
     let mut max_rhs = (0u64, String::new());
@@ -26,7 +25,7 @@ fn main() {
             cushion_model::Module::Bistable
         };
         s.robot.dead_time = u.span(0.0, 0.1);
-        support::draw_module_axes(&mut s, &mut u);
+        draw_module_axes(&mut s, &mut u);
         let r = simulate(&s, &RunOptions::default());
         let sm = r.summary;
         *counts.entry(sm.status.name()).or_insert(0) += 1;

@@ -1,5 +1,5 @@
-//! Accuracy far from the paper's scenes: the wide random scenes of `support/wide.rs`, each run
-//! at the default tolerance (rtol 1e-6, atol 1e-9) and at rtol 1e-11 (atol 1e-14) as the
+//! Accuracy far from the paper's scenes: the wide random scenes of `cushion_studies::wide`, each
+//! run at the default tolerance (rtol 1e-6, atol 1e-9) and at rtol 1e-11 (atol 1e-14) as the
 //! reference. Prints, over the scenes that detect an impact, the median, 99th percentile and
 //! largest error of each summary value relative to its scale (speeds to `v_max`, the impulse to
 //! the larger of itself and `(m_t + m_p) v_max`, the peak force to itself, the stroke to the stroke length, the
@@ -9,8 +9,10 @@
 //! still `dp5`).
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
-mod support;
-use support::wide::{count_and_seed, draw, impact_counts, method_flag, with_method, Corners};
+use cushion_studies::wide::{
+    count_and_seed, draw, impact_counts, method_flag, with_method, Corners,
+};
+use cushion_studies::Uniform;
 
 fn run(s: &Scene, rtol: f64, atol: f64) -> Summary {
     let mut s = s.clone();
@@ -24,7 +26,7 @@ fn main() {
     let method = method_flag(&mut all);
     let mut args = all.into_iter();
     let (n, seed) = count_and_seed(&mut args);
-    let mut u = support::Uniform::new(seed);
+    let mut u = Uniform::new(seed);
     let names = [
         "object_final_velocity",
         "robot_impulse",

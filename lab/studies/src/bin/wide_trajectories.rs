@@ -1,18 +1,18 @@
-//! The recorded trajectories of the wide random scenes (`support/wide.rs`) against their own
-//! summaries: `wide_trajectories [N] [SEED] [--corners] [--rtol R]` (`--rtol`: every scene at
-//! that tolerance, atol 1e-3 of it, instead of its own). For each run that ends `ok` with an
+//! The recorded trajectories of the wide random scenes (`cushion_studies::wide`) against their
+//! own summaries: `wide_trajectories [N] [SEED] [--corners] [--rtol R]` (`--rtol`: every scene
+//! at that tolerance, atol 1e-3 of it, instead of its own). For each run that ends `ok` with an
 //! adaptive method, the trajectory (every step, every event, samples every `t_end / 2000`) must
 //! end at `t_end`, run forward in time, carry the summary's final object speed at its last
 //! point, and stay within the summary's peaks: no sample of `|F_r|`, `F_c`, the stroke or the
 //! gas pressure above the refined peak by more than rtol of its scale
-//! (`support::wide::peaks_and_samples`). Prints the runs that fail and the largest excess of
-//! each kind, in rtol.
+//! (`cushion_studies::wide::peaks_and_samples`). Prints the runs that fail and the largest
+//! excess of each kind, in rtol.
 use cushion_model::RunStatus;
 
-mod support;
-use support::wide::{
+use cushion_studies::wide::{
     count_and_seed, draw, peaks_and_samples, run_recorded, trajectory_mismatches, Corners,
 };
+use cushion_studies::Uniform;
 
 fn main() {
     let mut all: Vec<String> = std::env::args().skip(1).collect();
@@ -31,7 +31,7 @@ fn main() {
     });
     let mut args = all.into_iter().filter(|a| a != "--corners");
     let (n, seed) = count_and_seed(&mut args);
-    let mut u = support::Uniform::new(seed);
+    let mut u = Uniform::new(seed);
     let mut worst = [(0.0f64, 0usize); 4];
     let (mut checked, mut failed) = (0, Vec::new());
     for i in 0..n {

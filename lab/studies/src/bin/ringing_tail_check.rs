@@ -4,14 +4,13 @@
 //! summary value (robot impulse relative to the momentum scale `(m_t + m_p) v_max`, energy
 //! residual absolute, the others relative): `ringing_tail_check [N] [KEY=VALUE]...`.
 use cushion_model::{simulate, Module, RunOptions, Scene};
-
-mod support;
+use cushion_studies::{draw_module_axes, set_key, Uniform};
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let n: usize = args.next().and_then(|a| a.parse().ok()).unwrap_or(200);
     let sets: Vec<String> = args.collect();
-    let mut u = support::Uniform::new(0x9E3779B97F4A7C15u64);
+    let mut u = Uniform::new(0x9E3779B97F4A7C15u64);
     let names = [
         "robot_impulse",
         "object_final_velocity",
@@ -32,9 +31,9 @@ fn main() {
         };
         s.robot.dead_time = u.span(0.0, 0.1);
         s.robot.brake_deceleration = u.span(5.0, 25.0);
-        support::draw_module_axes(&mut s, &mut u);
+        draw_module_axes(&mut s, &mut u);
         for arg in &sets {
-            assert!(support::set_key(&mut s, arg), "{arg}: not KEY=VALUE");
+            assert!(set_key(&mut s, arg), "{arg}: not KEY=VALUE");
         }
         let desc = format!(
             "--set module={} --set robot.dead_time={} --set robot.brake_deceleration={} --set hydraulic.gas_pressure={} --set hydraulic.orifice_radius={} --set object.mass={}",

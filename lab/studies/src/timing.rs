@@ -1,4 +1,4 @@
-//! What the integrator's benchmarks share.
+//! What the integrator's benchmarks (`oscillator`, `stiff_ode`) share.
 
 use std::time::Instant;
 

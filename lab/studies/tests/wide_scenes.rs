@@ -1,21 +1,18 @@
 //! Scenes far outside the paper's: every scene key (docs/scene-keys.md) drawn over a wide range
-//! (the draw of `examples/support/wide.rs`: masses 5 g-1 kg, approach speed 0.05-3 m/s,
+//! (the draw of `cushion_studies::wide`: masses 5 g-1 kg, approach speed 0.05-3 m/s,
 //! stiffnesses 1e4-1e8, rtol 1e-9-1e-3, friction, cavitation, start from rest, no object, ...).
 //! Every run ends `ok` with a finite summary, its energy ledger closes to the tolerance, and the
 //! early end and the ringing tail change the summary by no more than the tolerance does. The rarer
 //! corners (fixed-step methods, a low step limit, the stiffness test stopping the run) end
 //! with a status that says why, never a panic. A recorded trajectory agrees with its summary.
-//! `cargo run --release --example wide_scenes 5000` (and `wide_trajectories`) run many more and
-//! report the worst of each.
-
-#[path = "../examples/support/mod.rs"]
-mod support;
+//! `cargo run --release -p cushion-studies --bin wide_scenes -- 5000` (and `wide_trajectories`)
+//! run many more and report the worst of each.
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
-use support::wide::{
+use cushion_studies::wide::{
     draw, impact_counts, peaks_and_samples, run_recorded, trajectory_mismatches, Corners,
 };
-use support::Uniform;
+use cushion_studies::Uniform;
 
 fn finite(s: &Summary) -> bool {
     let opt = |x: Option<f64>| x.is_none_or(f64::is_finite);
@@ -108,10 +105,11 @@ fn wide_scenes_end_ok_and_the_early_end_changes_nothing() {
 
 #[test]
 fn wide_scenes_end_ok_under_every_adaptive_method() {
-    // The first 400 scenes of `examples/wide_scenes`'s own draw (its default seed), under
+    // The first 400 scenes of the `wide_scenes` binary's own draw (its default seed), under
     // DOP853, Rodas and `auto`. Scene 294 ended with a peak robot force of 483 N under DOP853
-    // (`tests/dop853_at_rest.rs`), scene 396 at the step limit under Rodas
-    // (`tests/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
+    // (`crates/cushion-model/tests/dop853_at_rest.rs`), scene 396 at the step limit under Rodas
+    // (`crates/cushion-model/tests/friction_and_contacts.rs`,
+    // `a_slip_that_touches_zero_and_turns_back_goes_on`).
     // Each run ends `ok` with a finite summary and its ledger within 1000 rtol (measured over
     // 2,000 scenes: 100 rtol under DOP853, 34 under Rodas, 56 under `auto`).
     for method in ["dop853", "rodas", "auto"] {
@@ -119,7 +117,10 @@ fn wide_scenes_end_ok_under_every_adaptive_method() {
         for i in 0..400 {
             let mut s = draw(&mut u, Corners::NONE);
             s.set_from_str("solver.method", method).unwrap();
-            let what = format!("{method}, scene {i}:\n{}", toml::to_string(&s.to_toml()).unwrap());
+            let what = format!(
+                "{method}, scene {i}:\n{}",
+                toml::to_string(&s.to_toml()).unwrap()
+            );
             let a = simulate(&s, &RunOptions::default()).summary;
             assert_eq!(a.status, RunStatus::Ok, "{what}{}", a.message);
             assert!(finite(&a), "{what}{a:?}");
@@ -137,7 +138,7 @@ fn wide_trajectories_agree_with_their_summaries() {
     // by more than rtol of its scale (the peaks are searched on the same dense output). Forces
     // below 10 mN (a tool riding along, F_r of the integration error's size) and runs flagged
     // stiff (whose dense output swings between step ends) are left out. Measured with
-    // `wide_trajectories`: no run beyond 1 rtol in 20,000 scenes of the example's draw, at most
+    // `wide_trajectories`: no run beyond 1 rtol in 20,000 scenes of the binary's draw, at most
     // 0.36 rtol in 3,000 of this one.
     let mut u = Uniform::new(0x2545F4914F6CDD1D);
     let mut compared = 0;
@@ -174,7 +175,7 @@ fn wide_trajectories_agree_with_their_summaries() {
 #[test]
 fn corner_scenes_end_with_a_status_that_says_why() {
     // every scene a corner: fixed-step methods, a step limit of 1-1000, the stiffness test
-    // stopping the run (the compressible liquid is left to the example: an explicit method
+    // stopping the run (the compressible liquid is left to the binary: an explicit method
     // takes its million steps there)
     let corners = Corners {
         compressible: 0.0,

@@ -1,14 +1,13 @@
-//! Run one scene and print its summary and event log: `cargo run -p cushion-model --example
+//! Run one scene and print its summary and event log: `cargo run -p cushion-studies --bin
 //! run_scene -- [SCENE.toml] [KEY=VALUE]...`.
 use cushion_model::{simulate, RunOptions, Scene};
-
-mod support;
+use cushion_studies::{scene_from, set_key};
 
 fn main() {
     let mut scene = Scene::default();
     for arg in std::env::args().skip(1) {
-        if !support::set_key(&mut scene, &arg) {
-            scene = support::scene_from(Some(&arg));
+        if !set_key(&mut scene, &arg) {
+            scene = scene_from(Some(&arg));
         }
     }
     let r = simulate(&scene, &RunOptions::default());

@@ -1,13 +1,12 @@
 //! Print a scene's event log (time, name, stroke): `event_log SCENE.toml [KEY=VALUE]...`.
 use cushion_model::{simulate, RunOptions};
-
-mod support;
+use cushion_studies::{scene_from, set_key};
 
 fn main() {
     let mut args = std::env::args().skip(1);
-    let mut scene = support::scene_from(args.next().as_deref());
+    let mut scene = scene_from(args.next().as_deref());
     for arg in args {
-        assert!(support::set_key(&mut scene, &arg), "{arg}: not KEY=VALUE");
+        assert!(set_key(&mut scene, &arg), "{arg}: not KEY=VALUE");
     }
     let r = simulate(&scene, &RunOptions::default());
     for e in &r.events {

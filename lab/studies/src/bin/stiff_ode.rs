@@ -1,5 +1,5 @@
 //! Work and wall time of the implicit method on the classic stiff problems (a benchmark, not a
-//! test): `cargo run --release -p cushion-ode --example stiff_ode` (or `bash lab/stiff_ode.sh`,
+//! test): `cargo run --release -p cushion-studies --bin stiff_ode` (or `bash lab/stiff_ode.sh`,
 //! which also runs SciPy's solvers on the same problems when `.venv` has SciPy).
 //!
 //! For each problem, Rodas4 with the system's Jacobian, Rodas4 with finite differences, and
@@ -14,9 +14,8 @@ use cushion_ode::test_models::hires::{self, Hires};
 use cushion_ode::test_models::orego::{self, Orego};
 use cushion_ode::test_models::robertson::{self, Robertson};
 use cushion_ode::test_models::van_der_pol::{VanDerPol, REFERENCE_EPS_1E6};
-mod support;
 
-use support::wall_time;
+use cushion_studies::timing::wall_time;
 
 use cushion_ode::{
     solve, Method, OdeSystem, Solution, SolverOptions, State, StiffnessAction, Tolerance,

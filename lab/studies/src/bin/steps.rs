@@ -4,18 +4,17 @@
 //! (A ringing tail that ends at the robot's stop, where the run is integrated again, leaves
 //! its trajectory points, 16 a period, among the steps it counts; the total is the solver's.)
 use cushion_model::{simulate, RunOptions};
-
-mod support;
+use cushion_studies::{scene_from, set_key};
 
 fn main() {
     let mut args = std::env::args().skip(1);
     let path = args
         .next()
         .expect("steps SCENE.toml [KEY=VALUE]... [EDGE_MS]...");
-    let mut scene = support::scene_from(Some(&path));
+    let mut scene = scene_from(Some(&path));
     let mut edges: Vec<f64> = Vec::new();
     for arg in args {
-        if !support::set_key(&mut scene, &arg) {
+        if !set_key(&mut scene, &arg) {
             edges.push(arg.parse::<f64>().expect("a time in ms") * 1e-3);
         }
     }

@@ -1,6 +1,7 @@
-//! What the random-scene examples share: a seeded generator and issue 4's design axes.
-//! (A folder without `main.rs`: Cargo does not take it for an example.)
-#![allow(dead_code)]
+//! The lab's study binaries (`src/bin/`, one per study, run by the scripts in `lab/`; see
+//! `lab/README.md`) and what they share: here a seeded generator, issue 4's design axes and a
+//! scene from its file and `KEY=VALUE` arguments; the wide random scenes in [`wide`], a median
+//! wall time in [`timing`]. Not published: a benchmark or a study, not part of the engine.
 
 use cushion_model::Scene;
 
@@ -12,6 +13,9 @@ impl Uniform {
         Uniform(seed)
     }
 
+    /// The next number, uniform in [0, 1). A draw that never ends (an `f64`, never `None`): not
+    /// an `Iterator`, which Clippy asks of a public `next`.
+    #[allow(clippy::should_implement_trait)]
     pub fn next(&mut self) -> f64 {
         self.0 ^= self.0 << 13;
         self.0 ^= self.0 >> 7;
@@ -59,4 +63,5 @@ pub fn set_key(scene: &mut Scene, arg: &str) -> bool {
     }
 }
 
+pub mod timing;
 pub mod wide;

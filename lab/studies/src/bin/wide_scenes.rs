@@ -7,12 +7,15 @@
 //! every run that did not end `ok` (a panic would end `invalid`, "internal error"), whose
 //! ledger residual exceeds `1000 rtol`, or that detects the impact and differs by more than
 //! `1000 rtol`: `wide_scenes [N] [SEED] [K] [--corners] [--method M]` (with K: print scene K as
-//! TOML instead; `--corners`: 6 % of the scenes in the rarer corners of `support/wide.rs`;
-//! `--method`: every adaptive scene under `dop853`, `rodas` or `auto` instead of `dp5`).
+//! TOML instead; `--corners`: 6 % of the scenes in the rarer corners of
+//! `cushion_studies::wide`; `--method`: every adaptive scene under `dop853`, `rodas` or `auto`
+//! instead of `dp5`).
 use cushion_model::{simulate, RunOptions, RunStatus};
 
-mod support;
-use support::wide::{count_and_seed, draw, impact_counts};
+use cushion_studies::wide::{
+    count_and_seed, draw, impact_counts, method_flag, with_method, Corners,
+};
+use cushion_studies::Uniform;
 
 /// `|a - b| / scale`, 0 when both are the same (also both NaN or both None).
 fn off(a: Option<f64>, b: Option<f64>, scale: f64) -> f64 {
@@ -28,17 +31,17 @@ fn main() {
     // `--corners`: 6 % of the scenes in the rarer corners (the compressible liquid, fixed-step
     // methods, a low step limit, the stiffness test stopping the run)
     let mut all: Vec<String> = std::env::args().skip(1).collect();
-    let method = support::wide::method_flag(&mut all);
+    let method = method_flag(&mut all);
     let corners = if all.iter().any(|a| a == "--corners") {
-        support::wide::Corners::SOME
+        Corners::SOME
     } else {
-        support::wide::Corners::NONE
+        Corners::NONE
     };
     let mut args = all.into_iter().filter(|a| a != "--corners");
     let (n, seed) = count_and_seed(&mut args);
     // `wide_scenes N SEED K`: write scene K as TOML to standard output instead
     let show: Option<usize> = args.next().and_then(|a| a.parse().ok());
-    let mut u = support::Uniform::new(seed);
+    let mut u = Uniform::new(seed);
     let names = [
         "object_final_velocity",
         "robot_impulse",
@@ -53,7 +56,7 @@ fn main() {
     let (mut detected, mut touched, mut idle_differ, mut fixed) = (0, 0, 0, 0);
     let mut worst_residual = (0.0f64, 0usize);
     for i in 0..n {
-        let s = support::wide::with_method(draw(&mut u, corners), method.as_deref());
+        let s = with_method(draw(&mut u, corners), method.as_deref());
         if show == Some(i) {
             print!("{}", toml::to_string(&s.to_toml()).expect("a table"));
             return;

@@ -1,6 +1,6 @@
 //! A lone elastic Hertz rebound after a flight, over a grid of stiffness, speed and tolerance (a
-//! benchmark of accuracy, not a test): `cargo run --release -p cushion-ode --example
-//! hertz_rebounds [dp5|dop853|rodas ...] [--undeclared]`.
+//! benchmark of accuracy, not a test): `cargo run --release -p cushion-studies --bin
+//! hertz_rebounds -- [dp5|dop853|rodas ...] [--undeclared]`.
 //!
 //! The body of `test_models::hertz_rebound` must leave the wall as fast as it hit it. It
 //! declares the contact's end a kink of `f` ([`cushion_ode::OdeSystem::kinked_at_event`]);

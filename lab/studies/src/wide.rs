@@ -1,11 +1,12 @@
 //! Random scenes far outside the paper's: every key of docs/scene-keys.md over a wide range.
-//! Shared by `examples/wide_scenes.rs` (many scenes, a report) and `tests/wide_scenes.rs`.
+//! Shared by the `wide_scenes`, `wide_accuracy` and `wide_trajectories` binaries (many scenes,
+//! a report) and `lab/studies/tests/wide_scenes.rs`.
 
-use super::Uniform;
+use crate::Uniform;
 use cushion_model::config::RobotStart;
 use cushion_model::{simulate, Module, RunOptions, RunResult, Scene, Summary, TrajectoryPoint};
 
-/// The leading `N SEED` arguments of the wide-scene examples (defaults 1000 and one fixed seed),
+/// The leading `N SEED` arguments of the wide-scene binaries (defaults 1000 and one fixed seed),
 /// so that `wide_scenes` and `wide_accuracy` draw the same scenes from the same arguments.
 pub fn count_and_seed(args: &mut impl Iterator<Item = String>) -> (usize, u64) {
     let n = args.next().and_then(|a| a.parse().ok()).unwrap_or(1000);
@@ -16,7 +17,7 @@ pub fn count_and_seed(args: &mut impl Iterator<Item = String>) -> (usize, u64) {
     (n, seed)
 }
 
-/// The `--method M` flag of the wide-scene examples, taken out of `args`: the adaptive method
+/// The `--method M` flag of the wide-scene binaries, taken out of `args`: the adaptive method
 /// every drawn scene is run with (the draw's own, `dp5`, without it; a corner's fixed-step
 /// method is kept).
 pub fn method_flag(args: &mut Vec<String>) -> Option<String> {
