@@ -2,44 +2,33 @@
 //! it, and the output sinks shared by `cushion simulate`, `cushion sweep` and the Python package
 //! (Parquet/CSV summaries, CSV and MCAP trajectories, SVG figures).
 //!
-//! Layers, each using only those listed before it:
-//! - `error` (what can go wrong), `runs` (which runs), `sweep_file` and `sampling` (what to
-//!   run), `summary_table` (the rows' columns);
+//! Layers, each a folder (with `error`, what can go wrong, and `atomic`, how every file is
+//! written, beside them):
+//! - `plan/`: what to run: `sweep_file` and `sampling`, `runs` (which runs), `summary_table`
+//!   (the rows' columns);
 //! - `engine`: runs a sweep in memory and returns Arrow record batches, with a progress
 //!   callback and a cancel flag;
-//! - `parquet_io`, `journal` (chunk files), `out_lock`, `provenance`, `report`, `merge` and
-//!   `runner` (the output folder: lock, chunks, resume, final files).
+//! - `folder/`: the output folder: `out_lock`, `journal` (chunk files), `parquet_io`,
+//!   `provenance`, `report`, `merge` and `runner` (lock, chunks, resume, final files);
+//! - `sinks/`: one run's trajectories (CSV, MCAP) and figures, also used by `cushion simulate`.
 //!
 //! The library never prints, never exits the process and spawns no program: warnings come back
 //! in the outcome, and the caller decides what the user sees.
 
-// Output sinks for one run (used by `cushion simulate` and by recorded sweep runs).
-pub mod figure;
-pub mod mcap_read;
-pub mod trajectory_csv;
-pub mod trajectory_mcap;
-
-// What to run.
-pub mod error;
-pub mod runs;
-pub mod sampling;
-pub mod summary_table;
-pub mod sweep_file;
-
-// Computing it.
-pub mod engine;
-
-// The output folder.
+// The layers, each a folder (see above); their modules keep their paths at the crate's root.
 pub mod atomic;
-mod invocations;
-pub mod journal;
-pub mod mcap_copy;
-pub mod merge;
-pub mod out_lock;
-pub mod parquet_io;
-pub mod provenance;
-pub mod report;
-pub mod runner;
+pub mod engine;
+pub mod error;
+pub mod folder;
+pub mod plan;
+pub mod sinks;
+
+pub(crate) use folder::invocations;
+pub use folder::{
+    journal, mcap_copy, merge, out_lock, parquet_io, provenance, report, runner,
+};
+pub use plan::{runs, sampling, summary_table, sweep_file};
+pub use sinks::{figure, mcap_read, trajectory_csv, trajectory_mcap};
 
 pub use engine::{compute, compute_scenes, Hooks, Plan};
 pub use error::SweepError;
