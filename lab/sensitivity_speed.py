@@ -50,6 +50,17 @@ def command_round() -> dict:
             "not_ok": int(m[2]), "outputs": int(m[3])}
 
 
+def design_space_round() -> float:
+    """The design-space sweep's runs per second at the same time: this VM's speed moves by a
+    fifth to a third from hour to hour, and docs/performance.md gives that sweep's figure."""
+    out = os.path.join(ROOT, "target", "sensitivity-bench-ds")
+    shutil.rmtree(out, ignore_errors=True)
+    start = time.perf_counter()
+    subprocess.run([BIN, "sweep", os.path.join(ROOT, "sweeps", "design-space.toml"), "--threads", "2",
+                    "--out", out, "--quiet"], check=True, cwd=ROOT)
+    return 16384 / (time.perf_counter() - start)
+
+
 def bench_rounds(rounds: int) -> list[float]:
     done = subprocess.run(["cargo", "bench", "--locked", "-p", "cushion-sensitivity", "--bench", "analyze",
                            "--", str(rounds)], capture_output=True, text=True, cwd=ROOT,
@@ -62,8 +73,12 @@ def bench_rounds(rounds: int) -> list[float]:
 def measure(rounds: int) -> dict:
     if not os.path.exists(BIN):
         sys.exit(f"{BIN} missing: cargo build --release --locked --bin cushion")
-    command = [command_round() for _ in range(rounds)]
-    return {"rounds": rounds, "threads": 2, "command": command, "analysis_bench": bench_rounds(rounds)}
+    command, design_space = [], []
+    for _ in range(rounds):
+        command.append(command_round())
+        design_space.append(design_space_round())
+    return {"rounds": rounds, "threads": 2, "command": command, "design_space_runs_per_second": design_space,
+            "analysis_bench": bench_rounds(rounds)}
 
 
 def fmt(xs: list[float]) -> str:
@@ -75,7 +90,7 @@ def table(r: dict) -> str:
     first = c[0]
     return "\n".join([
         f"D = 4, N = 2^14, second order: {first['runs']:,} runs ({first['not_ok']} not ok), "
-        f"{first['outputs']} outputs analysed, 1,000 resamples, 2 threads; fastest / median of "
+        f"every numeric output ({first['outputs']}), 1,000 resamples, 2 threads; fastest / median of "
         f"{r['rounds']} rounds:",
         "",
         "| | wall | CPU (user + system) |",
@@ -86,6 +101,10 @@ def table(r: dict) -> str:
         f"| {fmt([x['analysis'] for x in c])} | - |",
         f"| the analysis alone, 24 synthetic outputs (`cargo bench -p cushion-sensitivity --bench analyze`) "
         f"| {fmt(r['analysis_bench'])} | - |",
+        "",
+        f"In the same rounds the design-space sweep ran at {max(r['design_space_runs_per_second']):,.0f} runs/s "
+        f"(fastest round; \"The design-space sweep\" above gives this machine's figure at a faster hour): "
+        "the command's time scales with it.",
     ])
 
 
