@@ -13,14 +13,25 @@ fn abort_after_chunks(n: usize) {
     }
 }
 
+/// Ctrl-C (SIGINT) asks a sweep, design or sensitivity run to stop at its next chunk or round,
+/// so nothing is left half-written; a second one ends the process at once.
+#[cfg(unix)]
+extern "C" fn on_interrupt(_: libc::c_int) {
+    if cushion_cli::interrupt() {
+        // SAFETY: `_exit` is async-signal-safe (unlike `exit`, it runs no destructors).
+        unsafe { libc::_exit(130) };
+    }
+}
+
 fn main() {
-    // Ctrl-C asks a sweep, design or sensitivity run to stop at its next chunk or round, so
-    // nothing is left half-written; a second one ends the process at once.
-    let _ = ctrlc::set_handler(|| {
-        if cushion_cli::interrupt() {
-            std::process::exit(130);
-        }
-    });
+    #[cfg(unix)]
+    // SAFETY: the handler only swaps an atomic and calls `_exit`, both async-signal-safe.
+    unsafe {
+        libc::signal(
+            libc::SIGINT,
+            on_interrupt as extern "C" fn(libc::c_int) as libc::sighandler_t,
+        );
+    }
     if std::env::var_os(ABORT_ENV).is_some() {
         cushion_cli::on_chunk_written(abort_after_chunks);
     }

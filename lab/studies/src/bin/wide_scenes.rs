@@ -10,12 +10,75 @@
 //! TOML instead; `--corners`: 6 % of the scenes in the rarer corners of
 //! `cushion_studies::wide`; `--method`: every adaptive scene under `dop853`, `rodas` or `auto`
 //! instead of `dp5`).
-use cushion_model::{simulate, RunOptions, RunStatus};
+use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
 use cushion_studies::wide::{
     count_and_seed, draw, impact_counts, method_flag, with_method, Corners,
 };
 use cushion_studies::Uniform;
+
+/// The summary fields compared between the two runs of a scene.
+const NAMES: [&str; 6] = [
+    "object_final_velocity",
+    "robot_impulse",
+    "peak_robot_force",
+    "peak_contact_force",
+    "max_stroke",
+    "t_detect",
+];
+
+/// The two runs' differences in [`NAMES`]' order, each relative to the scene's own scale.
+fn differences(s: &cushion_model::Scene, a: &Summary, b: &Summary) -> [f64; 6] {
+    let v = s.robot.approach_speed;
+    let m = s.tool.mass + if s.object.enabled { s.object.mass } else { 0.0 };
+    [
+        off(a.object_final_velocity, b.object_final_velocity, v),
+        off(Some(a.robot_impulse), Some(b.robot_impulse), m * v),
+        off(
+            Some(a.peak_robot_force),
+            Some(b.peak_robot_force),
+            b.peak_robot_force.abs().max(1e-3),
+        ),
+        off(
+            Some(a.peak_contact_force),
+            Some(b.peak_contact_force),
+            b.peak_contact_force.abs().max(1e-3),
+        ),
+        off(Some(a.max_stroke), Some(b.max_stroke), s.stops.stroke),
+        off(a.t_detect, b.t_detect, s.t_end),
+    ]
+}
+
+/// The closing report: how the runs ended, the worst differences, every flagged run.
+fn print_tally(
+    n: usize,
+    refused: usize,
+    statuses: &std::collections::BTreeMap<String, usize>,
+    (detected, touched, fixed, idle_differ): (usize, usize, usize, usize),
+    worst: &[(f64, usize)],
+    worst_residual: (f64, usize),
+    flagged: &[String],
+) {
+    println!("{n} scenes, {refused} refused by validate; statuses {statuses:?}; {detected} detect the impact, {touched} touch the object");
+    for (k, name) in NAMES.iter().enumerate() {
+        println!(
+            "worst {name:<22} {:.2e} rtol (scene {})",
+            worst[k].0, worst[k].1
+        );
+    }
+    println!(
+        "worst energy_residual      {:.2e} rtol (scene {})",
+        worst_residual.0, worst_residual.1
+    );
+    println!("{fixed} scenes with a fixed-step method (ended ok, not compared)");
+    println!(
+        "{idle_differ} scenes that never detect the impact differ by more than 1000 rtol (noise-size forces)"
+    );
+    println!("{} flagged:", flagged.len());
+    for f in flagged {
+        println!("  {f}");
+    }
+}
 
 /// `|a - b| / scale`, 0 when both are the same (also both NaN or both None).
 fn off(a: Option<f64>, b: Option<f64>, scale: f64) -> f64 {
@@ -42,15 +105,7 @@ fn main() {
     // `wide_scenes N SEED K`: write scene K as TOML to standard output instead
     let show: Option<usize> = args.next().and_then(|a| a.parse().ok());
     let mut u = Uniform::new(seed);
-    let names = [
-        "object_final_velocity",
-        "robot_impulse",
-        "peak_robot_force",
-        "peak_contact_force",
-        "max_stroke",
-        "t_detect",
-    ];
-    let mut worst = vec![(0.0f64, 0usize); names.len()];
+    let mut worst = vec![(0.0f64, 0usize); NAMES.len()];
     let (mut refused, mut statuses) = (0, std::collections::BTreeMap::<String, usize>::new());
     let mut flagged = Vec::new();
     let (mut detected, mut touched, mut idle_differ, mut fixed) = (0, 0, 0, 0);
@@ -106,24 +161,7 @@ fn main() {
             flagged.push(format!("{i} (to t_end): {:?} {}", b.status, b.message));
             continue;
         }
-        let v = s.robot.approach_speed;
-        let m = s.tool.mass + if s.object.enabled { s.object.mass } else { 0.0 };
-        let diffs = [
-            off(a.object_final_velocity, b.object_final_velocity, v),
-            off(Some(a.robot_impulse), Some(b.robot_impulse), m * v),
-            off(
-                Some(a.peak_robot_force),
-                Some(b.peak_robot_force),
-                b.peak_robot_force.abs().max(1e-3),
-            ),
-            off(
-                Some(a.peak_contact_force),
-                Some(b.peak_contact_force),
-                b.peak_contact_force.abs().max(1e-3),
-            ),
-            off(Some(a.max_stroke), Some(b.max_stroke), s.stops.stroke),
-            off(a.t_detect, b.t_detect, s.t_end),
-        ];
+        let diffs = differences(&s, &a, &b);
         let counts_differ = impact_counts(&a) != impact_counts(&b);
         // Against the tolerance, over the scenes that detect the impact: in the others the
         // forces are often of the size of the integration error itself (the tool riding along
@@ -141,7 +179,7 @@ fn main() {
         if counts_differ || diffs.iter().any(|d| beyond(*d)) {
             let what: Vec<String> = diffs
                 .iter()
-                .zip(names)
+                .zip(NAMES)
                 .filter(|(d, _)| beyond(**d))
                 .map(|(d, n)| format!("{n} {d:.1e}"))
                 .collect();
@@ -158,23 +196,13 @@ fn main() {
             ));
         }
     }
-    println!("{n} scenes, {refused} refused by validate; statuses {statuses:?}; {detected} detect the impact, {touched} touch the object");
-    for (k, name) in names.iter().enumerate() {
-        println!(
-            "worst {name:<22} {:.2e} rtol (scene {})",
-            worst[k].0, worst[k].1
-        );
-    }
-    println!(
-        "worst energy_residual      {:.2e} rtol (scene {})",
-        worst_residual.0, worst_residual.1
+    print_tally(
+        n,
+        refused,
+        &statuses,
+        (detected, touched, fixed, idle_differ),
+        &worst,
+        worst_residual,
+        &flagged,
     );
-    println!("{fixed} scenes with a fixed-step method (ended ok, not compared)");
-    println!(
-        "{idle_differ} scenes that never detect the impact differ by more than 1000 rtol (noise-size forces)"
-    );
-    println!("{} flagged:", flagged.len());
-    for f in &flagged {
-        println!("  {f}");
-    }
 }
