@@ -34,6 +34,7 @@
 use std::path::{Path, PathBuf};
 
 use cushion_model::{Cell, Scene, Summary};
+use cushion_sweep::sweep_file::toml_helpers::{as_number, check_keys};
 use cushion_sweep::sweep_file::{Axis as SweepAxis, AxisValues};
 use cushion_sweep::SweepFile;
 use toml::Value;
@@ -104,26 +105,6 @@ pub fn numeric_metrics() -> Vec<&'static str> {
         .filter(|(_, c)| matches!(c, Cell::Float(_) | Cell::Int(_)))
         .map(|(n, _)| *n)
         .collect()
-}
-
-fn as_number(v: &Value) -> Option<f64> {
-    match v {
-        Value::Float(f) => Some(*f),
-        Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
-}
-
-fn check_keys(table: &toml::Table, allowed: &[&str], where_: &str) -> Result<(), String> {
-    for k in table.keys() {
-        if !allowed.contains(&k.as_str()) {
-            return Err(format!(
-                "unknown key `{k}` in {where_} (allowed: {})",
-                allowed.join(", ")
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// An array of tables `[[what]]` (absent: empty).

@@ -61,7 +61,7 @@ mod document;
 mod output;
 mod sampling;
 mod scene;
-mod toml_helpers;
+pub mod toml_helpers;
 
 use axes::parse_axes;
 pub use axis::{linspace, logspace};

@@ -1,5 +1,5 @@
-//! Small readers of TOML values shared by the sweep file's phases: unknown keys, numbers and
-//! type names.
+//! Small readers of TOML values shared by the sweep file's phases and the design file's: unknown
+//! keys, numbers and type names.
 
 use toml::Value;
 
@@ -7,7 +7,8 @@ pub(super) fn type_name(v: &Value) -> &'static str {
     v.type_str()
 }
 
-pub(super) fn as_number(v: &Value) -> Option<f64> {
+/// A TOML integer or float as a number.
+pub fn as_number(v: &Value) -> Option<f64> {
     match v {
         Value::Float(f) => Some(*f),
         Value::Integer(i) => Some(*i as f64),
@@ -15,7 +16,9 @@ pub(super) fn as_number(v: &Value) -> Option<f64> {
     }
 }
 
-pub(super) fn check_keys(
+/// Every key of `table` is in `allowed`; else the message names the key, where it is and what
+/// is allowed.
+pub fn check_keys(
     table: &toml::Table,
     allowed: &[&str],
     where_: &str,
