@@ -19,12 +19,12 @@ use std::path::{Path, PathBuf};
 
 use arrow_array::RecordBatch;
 use arrow_schema::DataType;
-use cushion_model::{simulate, Scene};
-use cushion_sweep::atomic::{write_atomic, AtomicFile};
+use cushion_model::simulate;
+use cushion_sweep::atomic::{remove_stale_temps, write_atomic, AtomicFile};
 use cushion_sweep::engine::{Hooks, Model};
 use cushion_sweep::out_lock::{OutputLock, LOCK_FILE};
 use cushion_sweep::parquet_io::{count_failed_batch, write_parquet_atomic};
-use cushion_sweep::provenance::digest;
+use cushion_sweep::provenance::{base_scene, digest, solver_settings, unix_now};
 use cushion_sweep::summary_table::{csv_text, write_csv_rows, ColType, TableSchema};
 use cushion_sweep::SweepError;
 
@@ -102,7 +102,7 @@ pub fn run_design_with(
     let existed = out_dir.exists();
     let lock = OutputLock::take(&out_dir).map_err(|e| e.into_sweep_error(&out_dir))?;
     let mut warnings: Vec<String> = lock.warning(&out_dir).into_iter().collect();
-    remove_stale_temps(&out_dir);
+    remove_stale_temps(&out_dir, OUTPUT_FILES);
     let result = match compute_design_with(file, opts.threads, hooks, sim) {
         Ok(result) => result,
         Err(e) => {
@@ -220,23 +220,7 @@ pub fn design_digest(file: &DesignFile) -> String {
 /// `provenance.json`: what the folder holds and how it was made.
 pub fn provenance(r: &DesignResult, git_commit: Option<&str>) -> serde_json::Value {
     let file = &r.file;
-    let get = |k: &str| {
-        file.base
-            .get(k)
-            .ok()
-            .and_then(|v| serde_json::to_value(v).ok())
-            .unwrap_or(serde_json::Value::Null)
-    };
-    let solver: serde_json::Map<String, serde_json::Value> = Scene::keys()
-        .iter()
-        .filter(|k| k.starts_with("solver."))
-        .map(|k| (k.to_string(), get(k)))
-        .collect();
     let failed: usize = r.runs.iter().map(count_failed_batch).sum();
-    let finished = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map(|d| d.as_secs())
-        .unwrap_or(0);
     serde_json::json!({
         "cushion_version": env!("CARGO_PKG_VERSION"),
         "git_commit": git_commit,
@@ -261,24 +245,8 @@ pub fn provenance(r: &DesignResult, git_commit: Option<&str>) -> serde_json::Val
         "batches": r.batches,
         "threads": r.threads,
         "wall_seconds": r.wall_seconds,
-        "finished_unix_time": finished,
-        "solver": solver,
-        "base_scene": serde_json::to_value(file.base.to_toml()).unwrap_or(serde_json::Value::Null),
+        "finished_unix_time": unix_now(),
+        "solver": solver_settings(&file.base),
+        "base_scene": base_scene(&file.base),
     })
-}
-
-/// Temporary files of our outputs left by a process killed while writing them.
-fn remove_stale_temps(out_dir: &Path) {
-    let Ok(entries) = fs::read_dir(out_dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let name = e.file_name().to_string_lossy().into_owned();
-        if OUTPUT_FILES
-            .iter()
-            .any(|f| name.starts_with(&format!(".{f}.tmp-")))
-        {
-            let _ = fs::remove_file(e.path());
-        }
-    }
 }

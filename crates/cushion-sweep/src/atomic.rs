@@ -82,6 +82,24 @@ pub fn write_atomic(target: &Path, bytes: &[u8]) -> io::Result<()> {
     f.commit()
 }
 
+/// Remove the temporary files that a process killed while writing left for the files `names`
+/// in `dir` (their `.<name>.tmp-<pid>` siblings); other files stay. Errors are ignored: a
+/// leftover temporary is only clutter.
+pub fn remove_stale_temps(dir: &Path, names: &[&str]) {
+    let Ok(entries) = fs::read_dir(dir) else {
+        return;
+    };
+    for e in entries.flatten() {
+        let file = e.file_name().to_string_lossy().into_owned();
+        if names
+            .iter()
+            .any(|n| file.starts_with(&format!(".{n}.tmp-")))
+        {
+            let _ = fs::remove_file(e.path());
+        }
+    }
+}
+
 /// fsync a folder so a rename in it survives power loss (a no-op where folders can't be opened).
 pub fn sync_dir(dir: &Path) -> io::Result<()> {
     let dir = if dir.as_os_str().is_empty() {
@@ -119,5 +137,26 @@ mod tests {
             1,
             "no temporary left"
         );
+    }
+
+    #[test]
+    fn stale_temps_of_the_named_files_go_and_nothing_else() {
+        let dir = tempfile::tempdir().unwrap();
+        for f in [
+            ".a.txt.tmp-12",
+            ".b.txt.tmp-7",
+            "a.txt",
+            ".a.txt.keep",
+            "x.tmp-1",
+        ] {
+            fs::write(dir.path().join(f), b"").unwrap();
+        }
+        remove_stale_temps(dir.path(), &["a.txt", "b.txt"]);
+        let mut left: Vec<String> = fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        left.sort();
+        assert_eq!(left, [".a.txt.keep", "a.txt", "x.tmp-1"]);
     }
 }

@@ -40,11 +40,33 @@ pub fn finished_same(out_dir: &Path, digest: &str, shard: (usize, usize)) -> boo
         && p["shard"]["n"] == shard.1
 }
 
-fn unix_now() -> u64 {
+/// Seconds since the Unix epoch, for `finished_unix_time` (0 if the clock is before it).
+pub fn unix_now() -> u64 {
     std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs())
         .unwrap_or(0)
+}
+
+/// Every `solver.*` key of `scene` with its value, for the `solver` entry of a provenance.
+pub fn solver_settings(scene: &Scene) -> serde_json::Map<String, serde_json::Value> {
+    Scene::keys()
+        .iter()
+        .filter(|k| k.starts_with("solver."))
+        .map(|k| {
+            let value = scene
+                .get(k)
+                .ok()
+                .and_then(|v| serde_json::to_value(v).ok())
+                .unwrap_or(serde_json::Value::Null);
+            (k.to_string(), value)
+        })
+        .collect()
+}
+
+/// The resolved scene as TOML-shaped JSON, for the `base_scene` entry of a provenance.
+pub fn base_scene(scene: &Scene) -> serde_json::Value {
+    serde_json::to_value(scene.to_toml()).unwrap_or(serde_json::Value::Null)
 }
 
 /// What one invocation of a sweep did, for its provenance.
@@ -67,19 +89,6 @@ pub struct Record<'a> {
 impl Record<'_> {
     pub fn to_json(&self) -> serde_json::Value {
         let sweep = self.sweep;
-        let get = |k: &str| {
-            sweep
-                .base
-                .get(k)
-                .ok()
-                .and_then(|v| serde_json::to_value(v).ok())
-                .unwrap_or(serde_json::Value::Null)
-        };
-        let solver: serde_json::Map<String, serde_json::Value> = Scene::keys()
-            .iter()
-            .filter(|k| k.starts_with("solver."))
-            .map(|k| (k.to_string(), get(k)))
-            .collect();
         serde_json::json!({
             "cushion_version": env!("CARGO_PKG_VERSION"),
             "git_commit": self.git_commit,
@@ -102,8 +111,8 @@ impl Record<'_> {
             "wall_seconds_all_invocations": self.earlier.0 + self.wall,
             "invocations": self.earlier.1 + 1,
             "finished_unix_time": unix_now(),
-            "solver": solver,
-            "base_scene": serde_json::to_value(sweep.base.to_toml()).unwrap_or(serde_json::Value::Null),
+            "solver": solver_settings(&sweep.base),
+            "base_scene": base_scene(&sweep.base),
         })
     }
 }

@@ -18,14 +18,14 @@
 //! Shards (`run % N == K - 1`, `runs.rs`) write their own folders; `merge.rs` joins them.
 
 use std::fs;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::sync::mpsc::Receiver;
 use std::time::Instant;
 
 use cushion_model::simulate;
 
-use crate::atomic::write_atomic;
+use crate::atomic::{remove_stale_temps, write_atomic};
 use crate::engine::{thread_pool, Hooks, Model, Plan, RunCount, RunRow};
 use crate::error::{io_err, SweepError};
 use crate::invocations::Invocation;
@@ -299,7 +299,7 @@ impl<'a> FolderSweep<'a> {
     /// invocations.
     fn open_journal(&self) -> Result<Invocation, SweepError> {
         let journal = &self.journal;
-        remove_stale_temps(&self.out_dir);
+        remove_stale_temps(&self.out_dir, OUTPUT_FILES);
         fs::create_dir_all(&journal.dir).map_err(|e| io_err(journal.dir.display(), e))?;
         write_atomic(&journal.state_path(), self.state.to_string().as_bytes())
             .map_err(|e| io_err(journal.dir.display(), e))?;
@@ -434,21 +434,5 @@ impl<'a> FolderSweep<'a> {
         )
         .map_err(|e| io_err(out_dir.display(), e))?;
         Ok(failed)
-    }
-}
-
-/// Temporary files of our outputs left by a process killed while writing them.
-fn remove_stale_temps(out_dir: &Path) {
-    let Ok(entries) = fs::read_dir(out_dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let name = e.file_name().to_string_lossy().into_owned();
-        if OUTPUT_FILES
-            .iter()
-            .any(|f| name.starts_with(&format!(".{f}.tmp-")))
-        {
-            let _ = fs::remove_file(e.path());
-        }
     }
 }
