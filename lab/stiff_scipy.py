@@ -1,4 +1,4 @@
-"""SciPy's stiff solvers on the problems of `crates/cushion-ode/tests/rodas_stiff.rs`, with the
+"""SciPy's stiff solvers on the problems of `crates/cushion-ode/tests/integrator/rodas_stiff.rs`, with the
 same tolerances and analytic Jacobians, for comparison with `bash lab/stiff_ode.sh`:
 evaluations of f (nfev; none spent on Jacobians), Jacobians (njev), LU factorizations (nlu),
 the mixed error at the end against the same reference, and wall time.

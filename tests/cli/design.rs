@@ -10,10 +10,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use arrow_array::{Array, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use serde_json::Value as Json;
 
-const BIN: &str = env!("CARGO_BIN_EXE_cushion");
+use crate::common::{cushion, ok, read_batches, read_json, root, s, BIN};
 
 const GAS: &str = "hydraulic.gas_pressure";
 const ORIFICE: &str = "hydraulic.orifice_radius";
@@ -22,30 +21,8 @@ const DEAD_TIME: &str = "robot.dead_time";
 const FORCE: &str = "peak_robot_force";
 const SPEED: &str = "object_final_velocity";
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 fn scene() -> PathBuf {
     root().join("sweeps/scenes/paper-hydraulic-dt70.toml")
-}
-
-fn cushion(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("cushion runs")
-}
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
 }
 
 /// The small question: the paper's design question at a design resolution of 1/8.
@@ -91,20 +68,6 @@ fn answer(file: &Path, out: &Path, threads: &str) -> Output {
     let o = cushion(&["design", s(file), "--out", s(out), "--threads", threads]);
     ok(&o);
     o
-}
-
-fn read_json(p: &Path) -> Json {
-    serde_json::from_slice(&fs::read(p).unwrap()).unwrap()
-}
-
-fn read_batches(p: &Path) -> Vec<RecordBatch> {
-    let f = fs::File::open(p).unwrap();
-    ParquetRecordBatchReaderBuilder::try_new(f)
-        .unwrap()
-        .build()
-        .unwrap()
-        .map(|b| b.unwrap())
-        .collect()
 }
 
 fn columns(b: &[RecordBatch]) -> Vec<String> {

@@ -7,40 +7,18 @@
 
 use std::fs;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 
-const BIN: &str = env!("CARGO_BIN_EXE_cushion");
+use crate::common::{cushion, ok, read_batches, root, s, BIN};
+
 const INPUTS: [&str; 4] = [
     "robot.dead_time",
     "hydraulic.gas_pressure",
     "hydraulic.orifice_radius",
     "object.mass",
 ];
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn cushion(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("cushion runs")
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
 
 /// The small study: the paper's four axes, N = 16, 50 resamples; `extra` appended.
 fn small(dir: &Path, name: &str, extra: &str) -> PathBuf {
@@ -76,17 +54,9 @@ range = [0.05, 1.0]
     f
 }
 
+/// The one record batch of a small parquet file.
 fn read(path: &Path) -> RecordBatch {
-    let f = fs::File::open(path).unwrap();
-    let r = ParquetRecordBatchReaderBuilder::try_new(f)
-        .unwrap()
-        .build()
-        .unwrap();
-    let batches: Vec<RecordBatch> = r.map(|b| b.unwrap()).collect();
-    arrow_select_concat(&batches)
-}
-
-fn arrow_select_concat(batches: &[RecordBatch]) -> RecordBatch {
+    let batches = read_batches(path);
     assert_eq!(batches.len(), 1, "one batch");
     batches[0].clone()
 }

@@ -5,18 +5,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use arrow_array::{Array, Float64Array, Int64Array, RecordBatch, StringArray};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use arrow_array::{Array, Float64Array, Int64Array, StringArray};
 
-const BIN: &str = env!("CARGO_BIN_EXE_cushion");
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn cushion(args: &[&str]) -> Output {
-    Command::new(BIN).args(args).output().expect("cushion runs")
-}
+use crate::common::{cushion, ok, read_batches, read_json, root, s, BIN};
 
 fn cushion_env(args: &[&str], env: (&str, &str)) -> Output {
     Command::new(BIN)
@@ -24,16 +15,6 @@ fn cushion_env(args: &[&str], env: (&str, &str)) -> Output {
         .env(env.0, env.1)
         .output()
         .expect("cushion runs")
-}
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "exit {:?}\nstdout: {}\nstderr: {}",
-        o.status.code(),
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
 }
 
 /// A sweep file in `dir`, with the shipped paper scene as its base.
@@ -87,25 +68,6 @@ fn run_shards(f: &Path, dir: &Path, n: usize) -> Vec<PathBuf> {
             ]));
             d
         })
-        .collect()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// A JSON file's contents (`provenance.json`, an invocation's `elapsed-*.json`).
-fn read_json(p: &Path) -> serde_json::Value {
-    serde_json::from_slice(&fs::read(p).unwrap()).unwrap()
-}
-
-fn read_batches(p: &Path) -> Vec<RecordBatch> {
-    let f = fs::File::open(p).unwrap();
-    ParquetRecordBatchReaderBuilder::try_new(f)
-        .unwrap()
-        .build()
-        .unwrap()
-        .map(|b| b.unwrap())
         .collect()
 }
 

@@ -149,7 +149,7 @@ impl Layout {
     /// the other states that no rate reads. The integrator's error norm averages over the other
     /// states (`cushion_ode::SolverOptions::quadratures`), so that the ledger, whose integrals
     /// are smooth where the motion is, barely changes the steps
-    /// (`tests/runs.rs::the_ledger_barely_changes_the_steps`), and still limits them where the
+    /// (`tests/model/runs.rs::the_ledger_barely_changes_the_steps`), and still limits them where the
     /// forces change while the states do not. None when every state is one (the rigid flange
     /// alone).
     pub fn quadratures(&self) -> usize {

@@ -13,7 +13,7 @@
 //!   nonlinear law can hold DOPRI5's controller well under the boundary: the compressible
 //!   liquid's orifice, laminar below a transition pressure of the size of the tolerance on
 //!   `p_m`, held it at `h |lambda|` 1.6-1.7 for a million steps
-//!   (`cushion-model/tests/auto.rs::a_compressible_liquid_held_under_the_stability_limit_switches`).
+//!   (`cushion-model/tests/model/auto.rs::a_compressible_liquid_held_under_the_stability_limit_switches`).
 //! - Each accepted Rodas step has the Jacobian of its start; the spectral radius `rho` of it
 //!   (`stiffness::spectral_radius`, a power iteration) says whether DOPRI5 would be stable
 //!   with the step Rodas takes next. After [`TO_NONSTIFF_STEPS`] steps in a row with

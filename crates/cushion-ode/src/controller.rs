@@ -224,7 +224,7 @@ const MIN_RATIO_AFTER_DISCONTINUITY: f64 = 0.02;
 /// order, so the controller's own retry (`err^(1/5)` for DOPRI5, at most a factor 5 or 3)
 /// would be rejected again several times over: `h (0.9 / err)^(1/2.5)`, at most 50 times
 /// shorter. The loop takes the smaller of this and the controller's size, until a step is
-/// accepted. Guarded by `tests/stiff_contact.rs::a_stiff_contact_costs_few_rejected_attempts`.
+/// accepted. Guarded by `tests/integrator/stiff_contact.rs::a_stiff_contact_costs_few_rejected_attempts`.
 pub fn retry_after_discontinuity(err: f64, h: f64) -> f64 {
     h * (0.9 / err)
         .powf(1.0 / ORDER_AFTER_DISCONTINUITY)

@@ -45,7 +45,7 @@ pub const STIFFNESS_THRESHOLD: f64 = crate::stiffness::THRESHOLD_SHARE * STABILI
 /// and where a stiff mode makes `err3` large (a tool resting on its stop: 300 to 1,800 times
 /// the tolerance) it passed a step 4.2 times the length of the one before, `h |lambda|` 6.9,
 /// with `err5` at 25 times the tolerance (`cushion-model`,
-/// `tests/peaks.rs::dop853_past_its_stability_boundary`).
+/// `tests/model/peaks.rs::dop853_past_its_stability_boundary`).
 pub const STABILITY_GUARD: f64 = STABILITY_BOUNDARY;
 
 /// Where DOP853's continuous extension stops being stable on the negative real axis: for
@@ -53,7 +53,7 @@ pub const STABILITY_GUARD: f64 = STABILITY_BOUNDARY;
 /// and 10.5 at `-6` (at `theta` about 0.83), while the step's own `|R(z)|` stays below 0.5.
 /// A step held by stability (`h |lambda|` near 6.4) has a dense output that amplifies a fast
 /// mode's deviation many times inside it
-/// (`tests/dop853.rs::the_dense_output_is_stable_up_to_its_boundary_and_not_beyond`).
+/// (`tests/integrator/dop853.rs::the_dense_output_is_stable_up_to_its_boundary_and_not_beyond`).
 pub const DENSE_STABILITY_BOUNDARY: f64 = 5.0;
 
 /// `y + h (a_1 k_1 + a_2 k_2 + ...)`, the sum in the code's order, component by component.

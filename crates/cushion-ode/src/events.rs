@@ -5,7 +5,7 @@
 //! step are both found; a step that provably holds no crossing (the system's chord bounds,
 //! [`OdeSystem::event_chord_bounds`]) is not sampled inside, and in a step that may hold one
 //! only the functions the bounds do not clear are (all of them again once a handler has acted:
-//! `tests/events.rs::a_function_a_handler_changes_inside_the_step_is_scanned_again`).
+//! `tests/integrator/events.rs::a_function_a_handler_changes_inside_the_step_is_scanned_again`).
 //! Location (`event_locate.rs`) is a bracketing root finder (regula falsi with Anderson and
 //! Björck's weights, safeguarded by bisection) on the dense output ([`locate`]); a crossing
 //! and back between two scan points is found at the function's extremum (`event_dip.rs`).
@@ -24,7 +24,7 @@
 //! A contact that begins at penetration zero is then in contact, not at its edge, and one that
 //! ends and touches again at once is found; a function still zero there (at rest on its
 //! threshold) fires only once it has left zero. Guarded by
-//! `tests/events.rs::a_function_zero_where_a_handler_left_it_takes_the_side_it_moves_to`.
+//! `tests/integrator/events.rs::a_function_zero_where_a_handler_left_it_takes_the_side_it_moves_to`.
 //!
 //! Kinked crossings. Where `f` itself loses smoothness at a crossing
 //! ([`OdeSystem::kinked_at_event`]: a Hertz force `k delta^1.5` vanishing as its contact
@@ -37,7 +37,7 @@
 //! [`REDO_BEFORE`] of its length, is not handled: the scan reports the crossing and the loop
 //! takes the step again, once, ending just past it (`step_guard.rs`). The crossing is then found
 //! at the end of the new step and handled there. Guarded by
-//! `tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
+//! `tests/integrator/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
 //!
 //! Crossings on a dense output that is not stable. Where a step is held by stability (DOP853
 //! past its continuous extension's boundary, `Stepper::dense_stability_boundary`), or passed
@@ -46,7 +46,7 @@
 //! not exist, and its time and state are not to be trusted. The loop asks the scan to report
 //! every crossing of such a step instead of handling it, and takes the step again short enough
 //! for its dense output to be stable (`step_guard.rs`). Guarded by
-//! `cushion-model/tests/dop853_at_rest.rs`.
+//! `cushion-model/tests/model/dop853_at_rest.rs`.
 
 use crate::dense::DenseOutput;
 use crate::event_dip as dip;
@@ -474,7 +474,7 @@ impl<const N: usize> EventScan<N> {
         }
         // A handler that keeps the step may still ask for a time stop inside the rest of
         // it: the step must not run past that stop, so it is cut at the event, as for a
-        // restart (`tests/events.rs::a_time_stop_asked_for_inside_the_step_is_kept`).
+        // restart (`tests/integrator/events.rs::a_time_stop_asked_for_inside_the_step_is_kept`).
         if strongest == EventAction::Continue && ctl.new_time_stops.iter().any(|&s| s > t && s < t1)
         {
             strongest = EventAction::Restart;

@@ -8,7 +8,7 @@
 //! stages, both carry that error, so its estimate misses most of it. An eighth-order method,
 //! whose steps are long, is rejected at such a kink, often two or three times, each retry
 //! barely smaller (its controller expects the error to fall like `h^8`), and the steps it
-//! accepts across kinks add errors its estimate does not see (`tests/kinks.rs`: 38 to 268
+//! accepts across kinks add errors its estimate does not see (`tests/integrator/kinks.rs`: 38 to 268
 //! times the tolerance). A step that ends where the function crosses zero is smooth.
 //!
 //! The system names such functions ([`OdeSystem::kink_count`], [`OdeSystem::kink`]). After
@@ -18,7 +18,7 @@
 //! restart after it: nothing in `f` changes but its smoothness.
 //!
 //! Only DOP853 lands on them ([`crate::stepper::Stepper::lands_on_kinks`]). DOPRI5 misses
-//! its tolerance across kinks too on `tests/kinks.rs`'s problem, but on the hydraulic paper
+//! its tolerance across kinks too on `tests/integrator/kinks.rs`'s problem, but on the hydraulic paper
 //! scenes (rtol 1e-4 to 1e-9) its steps are short enough that landing gave errors both ways for
 //! 1 to 10 % more evaluations.
 
@@ -32,10 +32,10 @@ pub const MAX_KINKS: usize = 4;
 
 /// A forecast crossing nearer the step's start than this share of the step is not landed on:
 /// the step runs over it. What a kink inside a step adds to its error grows like the cube of
-/// its distance from the nearer end (`tests/kinks.rs`: `v |v|` under the integral), so a step
+/// its distance from the nearer end (`tests/integrator/kinks.rs`: `v |v|` under the integral), so a step
 /// is landed on the crossing itself, not past it as on an event's, and a kink a thousandth
 /// into a step adds a billionth of what one in its middle does; at a hundredth, the error of
-/// `tests/kinks.rs`'s problem at tolerance 1e-8 was 6.9e-7 instead of 1.3e-8.
+/// `tests/integrator/kinks.rs`'s problem at tolerance 1e-8 was 6.9e-7 instead of 1.3e-8.
 const KINK_SLIVER: f64 = 1e-3;
 
 /// The kink functions' values at the last accepted point and the next forecast crossing.

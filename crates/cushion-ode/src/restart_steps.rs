@@ -25,9 +25,9 @@
 //! learned as its length up to that event. Learned whole, an attempt of which the run kept a
 //! picosecond was tried again at every recurrence, grown each time, and the same event found a
 //! picosecond into it, until the step limit (under Rodas, on an event function that sits at
-//! zero to within rounding: `cushion-model/tests/recurring_events.rs`).
+//! zero to within rounding: `cushion-model/tests/model/recurring_events.rs`).
 //!
-//! Guarded by `tests/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
+//! Guarded by `tests/integrator/stiff_contact.rs::a_recurring_contact_reuses_its_first_step`.
 
 use crate::system::MAX_EVENTS;
 

@@ -246,7 +246,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             self.opts.max_steps, self.t
         );
         if let Some(n) = stiffness.held_near_limit() {
-            // `stiffness::PATIENT_STEPS`; `cushion-model/tests/statuses.rs`
+            // `stiffness::PATIENT_STEPS`; `cushion-model/tests/model/statuses.rs`
             msg.push_str(&format!(
                 "; {n} steps in a row up to here were held by the method's stability, \
                  not its accuracy (h*lambda above {:.2} on each): the problem is stiff \

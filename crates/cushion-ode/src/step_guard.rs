@@ -15,7 +15,7 @@
 //! After either of the first two, the steps are held at the stiffness threshold from the latest
 //! estimate of `|lambda|`: where the stiff mode is at rest no error estimate limits them, and
 //! the controller's next step would jump past the boundary again and be taken again, every
-//! other step (`cushion-model/tests/dop853_at_rest.rs`).
+//! other step (`cushion-model/tests/model/dop853_at_rest.rs`).
 
 use crate::step_plan::LAND_PAST;
 use crate::stepper::Stepper;
@@ -62,7 +62,7 @@ pub(crate) struct StepGuard {
     /// The controller's size for the last step kept (before a forecast or a stop cut it). The
     /// run's first step has none before it, so past the boundary it counts as a jump (a run
     /// that starts at rest on a stiff stop passes its error test at any length there:
-    /// `cushion-model/tests/dop853_at_rest.rs`).
+    /// `cushion-model/tests/model/dop853_at_rest.rs`).
     h_before: f64,
     /// The attempt is a step taken again at the stiffness threshold.
     for_stability: bool,
@@ -230,7 +230,7 @@ mod tests {
         assert_eq!(g.unstable_at(true, Some(8.0), false), Some(8.0));
     }
 
-    /// The loop's side: `tests/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
+    /// The loop's side: `tests/integrator/stiff_contact.rs::a_lift_off_inside_a_step_is_taken_again`.
     #[test]
     fn a_kinked_crossing_inside_the_step_takes_it_again_just_past_the_crossing() {
         let mut g = StepGuard::new();

@@ -265,7 +265,7 @@ impl StepPlan {
 
     /// The run kept `kept` of a step accepted with the scaled error `err` by a method of order
     /// `order`: only now may it teach a restart its first step, and only the part of it the
-    /// run keeps (`restart_steps.rs`; `cushion-model/tests/recurring_events.rs`).
+    /// run keeps (`restart_steps.rs`; `cushion-model/tests/model/recurring_events.rs`).
     #[inline]
     pub(crate) fn kept(&mut self, kept: f64, err: Option<f64>, order: u32) {
         self.restart_steps.accepted(kept, err, order);

@@ -7,7 +7,7 @@
 //! (0.95-0.97 of it, for many steps in a row) or wanders about it, so a threshold 2 % under
 //! the boundary can miss a run that steps at its stability limit for good
 //! (`tests::fires_on_a_plateau_just_under_the_boundary`; in `cushion-model`,
-//! `tests/statuses.rs::a_run_held_at_the_stability_limit_is_flagged_stiff`, a run held there by
+//! `tests/model/statuses.rs::a_run_held_at_the_stability_limit_is_flagged_stiff`, a run held there by
 //! the orifice's damping). 0.9 of the boundary is what OrdinaryDiffEq's `AutoSwitch` uses
 //! (`stifftol = 9/10` of the method's stability size). A step bound by the accuracy of a fast
 //! mode keeps its `h |lambda|` below it: that mode's error would exceed the tolerance first.
@@ -121,7 +121,7 @@ pub const RESET_STEPS: u32 = 6;
 /// rtol 1e-6 at about a quarter radian a step), so only stability can hold the steps there.
 /// A stiff mode through a nonlinear law holds the controller well inside the boundary: the
 /// compressible liquid's orifice across its laminar transition kept DOPRI5 at `h |lambda|`
-/// 1.6-1.7 for a million steps (`cushion-model/tests/auto.rs`). `auto` switches to Rodas on
+/// 1.6-1.7 for a million steps (`cushion-model/tests/model/auto.rs`). `auto` switches to Rodas on
 /// such a run ([`crate::auto`]); under the other methods a run that reaches its step limit
 /// inside one says so.
 pub const PATIENT_STEPS: u32 = 1000;

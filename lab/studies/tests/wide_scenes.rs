@@ -107,8 +107,8 @@ fn wide_scenes_end_ok_and_the_early_end_changes_nothing() {
 fn wide_scenes_end_ok_under_every_adaptive_method() {
     // The first 400 scenes of the `wide_scenes` binary's own draw (its default seed), under
     // DOP853, Rodas and `auto`. Scene 294 ended with a peak robot force of 483 N under DOP853
-    // (`crates/cushion-model/tests/dop853_at_rest.rs`), scene 396 at the step limit under Rodas
-    // (`crates/cushion-model/tests/friction_and_contacts.rs`,
+    // (`crates/cushion-model/tests/model/dop853_at_rest.rs`), scene 396 at the step limit under Rodas
+    // (`crates/cushion-model/tests/model/friction_and_contacts.rs`,
     // `a_slip_that_touches_zero_and_turns_back_goes_on`).
     // Each run ends `ok` with a finite summary and its ledger within 1000 rtol (measured over
     // 2,000 scenes: 100 rtol under DOP853, 34 under Rodas, 56 under `auto`).

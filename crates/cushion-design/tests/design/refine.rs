@@ -3,9 +3,8 @@
 //! classified right, the runs spent are a small fraction of a brute-force grid's, the best
 //! design is where it should be, and the answer does not depend on how batches are evaluated.
 
-mod common;
 
-use common::{drive_refinement, Order};
+use crate::common::{drive_refinement, Order};
 use cushion_design::{
     Axes, Axis, DesignError, Limit, Limits, Objective, RefineSettings, Refinement, Sense,
 };

@@ -2,9 +2,8 @@
 //! comes within the tolerance of it, never beyond it (it is a real run), and its witness gives
 //! the value back to the bit.
 
-mod common;
 
-use common::{drive_search, Order};
+use crate::common::{drive_search, Order};
 use cushion_design::{
     Axes, Axis, DesignError, Direction, SearchSettings, Target, WorstCaseSearch, WorstCases,
 };

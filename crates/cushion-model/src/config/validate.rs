@@ -16,7 +16,7 @@ impl Scene {
     /// cavitation pressure only with cavitation), the bistable section a bistable scene, the
     /// object a scene with an object. A sweep checks every run's own scene before its first
     /// run, so a sweep that switches `module` still meets no invalid run at run time
-    /// (`tests/config.rs::a_part_constrains_only_the_scenes_that_have_it`).
+    /// (`tests/model/config.rs::a_part_constrains_only_the_scenes_that_have_it`).
     pub fn validate(&self) -> Result<(), ConfigError> {
         self.validate_numbers_are_finite()?;
         positive("t_end", self.t_end)?;

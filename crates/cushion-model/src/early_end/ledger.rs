@@ -83,7 +83,7 @@ fn robot_work(tail: &RingingTail, m: &Model, t_end: f64) -> f64 {
 /// (J); that rest is added as it is lost. Closing the ledger with this (and the robot's
 /// work) leaves a residual that measures how far the closed form departs from the force law
 /// (`tests::the_ledger_over_a_ringing_tail_checks_the_closed_form`,
-/// `tests/early_end.rs::the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance`).
+/// `tests/model/early_end.rs::the_ledger_over_a_ringing_tail_shrinks_with_the_tolerance`).
 fn dissipation(tail: &RingingTail, m: &Model, y_te: &[f64], t_end: f64, negligible: f64) -> f64 {
     let n = m.layout.n.clamp(1, MAX_STATES);
     let (Some(i), mut z) = (m.layout.tool, [0.0; MAX_STATES]) else {

@@ -9,7 +9,7 @@
 //! (about `rtol v_r`: 1e-6 m/s at 1 m/s). The speed test of the standing robot's settled tail
 //! (`100 atol`, `settled.rs`) never passes on it, so without the test below such runs would
 //! integrate the resting tool to `t_end`
-//! (`tests/early_end.rs::early_end_while_the_robot_cruises_on`).
+//! (`tests/model/early_end.rs::early_end_while_the_robot_cruises_on`).
 //!
 //! Here the tool is at rest when its deviation from the equilibrium on its stop, as the speed
 //! `hypot(sd, w0 u)` (`u = s - s_eq`; the largest speed its energy allows in the linearised

@@ -266,7 +266,7 @@ impl RingingSearch {
                     // restart, and the ringing is as lightly damped as where the error model
                     // was measured (at a damping ratio of 0.11 a design point's tail up to the
                     // stop left an energy residual of 7.4 rtol)
-                    // (`tests/early_end.rs::a_tail_up_to_the_robots_stop_equals_running_through_it`)
+                    // (`tests/model/early_end.rs::a_tail_up_to_the_robots_stop_equals_running_through_it`)
                     let long = t_stop - t >= RESUME_AFTER_PERIODS * period_guess(lins, m);
                     let light = tail.pieces[0].ring.zeta <= PREDICTED_DAMPING;
                     if !(seg.phase == Phase::Braking && long && light) {

@@ -44,7 +44,7 @@ impl<'a> EventKinematics<'a> {
 // only where the function moves by more than its rounding within the look: a slip that begins
 // as the holding force just passes the friction limit accelerates by about 1e-9 d / m_t, and a
 // heavily damped contact's `k + chi dd` can cross zero as the penetration rate levels off.
-// Without the margins, `tests/friction_and_contacts.rs::a_reverse_slip_after_a_failed_stick_test_is_followed`
+// Without the margins, `tests/model/friction_and_contacts.rs::a_reverse_slip_after_a_failed_stick_test_is_followed`
 // chatters through thousands of failed stick tests at one instant, and a scene of
 // `tests/wide_scenes.rs` loses its energy ledger.
 
@@ -56,7 +56,7 @@ const CONTACT_HYSTERESIS: f64 = 1e-14;
 /// or object to slip. A part sticks with a holding force just under the limit; its stuck value
 /// is then constant only up to rounding (a few ulp of the forces it is the difference of), and
 /// without the margin that noise could set off a slip a moment later and a stick right after
-/// (`tests/friction_and_contacts.rs::a_stuck_tool_slips_only_when_its_load_changes`).
+/// (`tests/model/friction_and_contacts.rs::a_stuck_tool_slips_only_when_its_load_changes`).
 const STICK_HYSTERESIS: f64 = 1e-9;
 
 /// Speed (m/s) past zero at which a slipping part's stick test runs: its event function is
@@ -65,7 +65,7 @@ const STICK_HYSTERESIS: f64 = 1e-9;
 /// that starts a step at exactly zero never fires there; without the margin, a reverse slip
 /// that turns back within the step after a failed stick test is invisible, and the tool goes
 /// on slipping with its friction pushing instead of braking, until its speed next passes zero
-/// (`tests/friction_and_contacts.rs::a_reverse_slip_after_a_failed_stick_test_is_followed`).
+/// (`tests/model/friction_and_contacts.rs::a_reverse_slip_after_a_failed_stick_test_is_followed`).
 const SLIP_HYSTERESIS: f64 = 1e-12;
 
 /// Relative margin (of `k`) by which `k + chi dd` must rise above zero for a released contact
@@ -394,7 +394,7 @@ impl Model {
                     // The slip speed touched zero and turns back: the same slip goes
                     // on, `f` is unchanged, and a restart would only find the same
                     // touch again at once (under Rodas, at every step, until the step
-                    // limit: `tests/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
+                    // limit: `tests/model/friction_and_contacts.rs::a_slip_that_touches_zero_and_turns_back_goes_on`).
                     return EventAction::Continue;
                 }
                 self.regime.tool_dir = dir;

@@ -13,7 +13,7 @@
 //! output, exact for any method. A top at a step's end is confirmed only by the next step's
 //! first sample, and the peak may lie on either side of it: the step before is then kept (its
 //! dense output, `kept_step.rs`) and both sides are searched
-//! (`tests/peaks.rs::peaks_just_after_a_step_end_are_found`). Several tops of nearly the same
+//! (`tests/model/peaks.rs::peaks_just_after_a_step_end_are_found`). Several tops of nearly the same
 //! height (a bistable module's back-stop impact and a later one, 0.04 % apart; one peak with
 //! two tops and a shallow dip) are each searched, so the one with the larger sample need not
 //! hold the larger peak. Where a quantity jumps (`F_r` at a robot kink under a rigid tool) the

@@ -185,7 +185,7 @@ impl PeakSampler {
             // the largest |F_r| may be the first value on this side, which no sample inside
             // the step sees (a rigid tool still pressing an object when the robot stops
             // braking: `F_r` jumps by `m_t a_brake` there and falls after;
-            // `tests/peaks.rs::a_force_that_jumps_when_the_robot_stops_is_its_peak`). A
+            // `tests/model/peaks.rs::a_force_that_jumps_when_the_robot_stops_is_its_peak`). A
             // value at a jump is exact where it is: it is found, not searched.
             let f_r = model.eval_inline(t0, step.y0.as_slice(), &seg, &r).f_r;
             self.trackers[ROBOT_FORCE].found(Peak {

@@ -16,7 +16,7 @@
 //! (`P(1/2, -3) = 0.2256`, `exp(-1.5) = 0.2231`). So under DOP853 a force's top in such a step
 //! is searched on the dense outputs of two DOP853 steps over the halves of the step, from its
 //! start, each as accurate as the accepted step
-//! (`tests/peaks.rs::dop853_tops_are_searched_on_half_steps`; which quantities:
+//! (`tests/model/peaks.rs::dop853_tops_are_searched_on_half_steps`; which quantities:
 //! `sampler.rs`, `FAST`). They cost [`EVALS`] evaluations of `f` a step, counted with the
 //! run's. DOP853 is the one method whose dense output has a finite stability boundary
 //! (`cushion_ode::stepper::Stepper::dense_stability_boundary`), so a step whose dense output is

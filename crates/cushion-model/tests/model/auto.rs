@@ -5,9 +5,8 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-mod common;
 
-use common::{kept_scene, paper, run_ok as run};
+use crate::common::{kept_scene, paper, run_ok as run};
 
 /// The largest difference of the results a user reads, each over its own scale: speeds over
 /// the approach speed, forces over the peak force, the stroke over the stroke's scale.

@@ -6,9 +6,9 @@
 
 use cushion_model::{simulate_with_ledger, RunOptions, RunStatus, Scene};
 
-mod common;
+use crate::common;
 
-use common::run_ok as run;
+use crate::common::run_ok as run;
 
 fn paper_with(sets: &[(&str, &str)]) -> Scene {
     common::paper("paper-hydraulic-dt70", sets)
@@ -88,7 +88,7 @@ fn the_orifices_laminar_range_changes_the_impact_by_less_than_the_tolerance() {
         0.0
     ));
     // the impulse is a small net value: its error is measured on the momentum scale
-    // (m_t + m_p) v_max, as in tests/tolerance.rs
+    // (m_t + m_p) v_max, as in tests/model/tolerance.rs
     let momentum = (0.048 + 0.246) * 1.0;
     assert!(
         within(

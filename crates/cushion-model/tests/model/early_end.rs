@@ -3,8 +3,7 @@
 
 use cushion_model::{Module, RunResult};
 
-mod common;
-use common::whole_runs::*;
+use crate::common::whole_runs::*;
 
 #[test]
 fn early_end_equals_running_to_t_end() {

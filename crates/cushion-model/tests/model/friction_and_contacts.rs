@@ -4,8 +4,8 @@
 use cushion_model::physics::GRAVITY;
 use cushion_model::{RunResult, Scene};
 
-mod common;
-use common::whole_runs::*;
+use crate::common;
+use crate::common::whole_runs::*;
 
 #[test]
 fn dry_friction_stick_slip_by_events() {

@@ -5,7 +5,7 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
-mod common;
+use crate::common;
 
 fn bistable(dead_time: &str, gas: &str, orifice: &str, mass: &str, rtol: &str) -> Summary {
     run("bistable", dead_time, gas, orifice, mass, rtol)

@@ -13,8 +13,7 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-mod common;
-use common::{kept_scene, reference, run_ok};
+use crate::common::{kept_scene, reference, run_ok};
 
 /// The scene under `method` (with a step limit), and the reference under DOPRI5 at rtol 1e-11.
 fn run_and_reference(name: &str, method: &str) -> (Summary, Summary) {

@@ -7,8 +7,7 @@ use cushion_model::model::Layout;
 use cushion_model::physics::{bistable_force, gas_pressure, hunt_crossley, orifice_pressure_drop};
 use cushion_model::{simulate, Module, RunOptions, RunStatus, Scene, TrajectoryPoint};
 
-mod common;
-use common::whole_runs::*;
+use crate::common::whole_runs::*;
 
 /// The module force on the tool `G`, computed here from a trajectory point and the scene alone
 /// (independent of the model's code paths); `F_r` must be `-G`.

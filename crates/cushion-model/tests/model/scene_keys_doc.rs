@@ -4,7 +4,7 @@
 //! default,
 //!
 //! ```text
-//! CUSHION_BLESS=1 cargo test -p cushion-model --test scene_keys_doc
+//! CUSHION_BLESS=1 cargo test -p cushion-model --test model scene_keys_doc
 //! ```
 //!
 //! rewrites the table between the page's two marker comments (the text around it is left as it
@@ -15,7 +15,7 @@ use std::path::PathBuf;
 use cushion_model::{ConfigError, KeyInfo, Scene};
 
 const BEGIN: &str = "<!-- BEGIN scene-keys table: generated from Scene::key_info(); \
-                     CUSHION_BLESS=1 cargo test -p cushion-model --test scene_keys_doc rewrites it -->";
+                     CUSHION_BLESS=1 cargo test -p cushion-model --test model scene_keys_doc rewrites it -->";
 const END: &str = "<!-- END scene-keys table -->";
 
 /// The units a key may have: SI, `-` for a dimensionless number, `""` for a choice of words, a
@@ -95,7 +95,7 @@ fn doc_page_holds_the_table_of_the_code() {
     assert!(
         page[start..end] == wanted,
         "{} is stale: its table differs from Scene::key_info() and the defaults; \
-         run `CUSHION_BLESS=1 cargo test -p cushion-model --test scene_keys_doc` to rewrite it.\n\
+         run `CUSHION_BLESS=1 cargo test -p cushion-model --test model scene_keys_doc` to rewrite it.\n\
          expected:\n{wanted}\nfound:\n{}",
         path.display(),
         &page[start..end]

@@ -3,8 +3,8 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene};
 
-mod common;
-use common::whole_runs::*;
+use crate::common;
+use crate::common::whole_runs::*;
 
 #[test]
 fn fixed_step_methods_agree_with_dp5() {
@@ -171,7 +171,7 @@ fn extreme_scenes_end_with_a_status() {
 
 #[test]
 fn a_run_at_its_step_limit_says_when_stability_held_its_steps() {
-    // Wide corner scene 4917 (`tests/auto.rs`): the compressible liquid's orifice holds DOPRI5
+    // Wide corner scene 4917 (`tests/model/auto.rs`): the compressible liquid's orifice holds DOPRI5
     // at h |lambda| 1.6-1.7, under the stiffness test's threshold (2.98), so the flag stays
     // down; the message tells the user that the steps were held by stability and what solves it
     let s = common::kept_scene("wide-1130-corner-4917", &[("solver.max_steps", "20000")]);

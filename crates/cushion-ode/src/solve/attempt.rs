@@ -99,7 +99,7 @@ impl<S: OdeSystem<N>, const N: usize> Integration<'_, S, N> {
                     // where the step starts it gives 0.29 of the true error, its fifth-order
                     // estimate alone 1.46 (`lab/dop853_onset.py`). Such a step is judged
                     // by the larger (cushion-model's
-                    // `tests/peaks.rs::dop853_after_a_gentle_contact_onset`).
+                    // `tests/model/peaks.rs::dop853_after_a_gentle_contact_onset`).
                     if self.since_restart.on_kink {
                         combined.max(self.weights.error_norm(err, &y, &attempt.y1))
                     } else {

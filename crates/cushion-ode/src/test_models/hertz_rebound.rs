@@ -3,7 +3,7 @@
 //! force sets in and vanishes like `delta^1.5` at them, and its end may be declared a kink of
 //! `f` ([`OdeSystem::kinked_at_event`]). [`rebound`]: a lone elastic rebound after a flight at
 //! `v0` with no gravity, which must leave the wall as fast as it hit it;
-//! `tests/stiff_contact.rs` drops a ball on a steel-like floor and lets it bounce.
+//! `tests/integrator/stiff_contact.rs` drops a ball on a steel-like floor and lets it bounce.
 
 use crate::{
     solve, Control, Direction, EventAction, Method, OdeSystem, SolverOptions, State, Tolerance,

@@ -230,7 +230,7 @@ fn bouncing_ball_bounce_times_match_the_closed_form() {
 #[test]
 fn time_stops_added_while_integrating_are_hit_exactly() {
     let mut sys = ScheduledBrake::new(0.07);
-    // As under Rodas (tests/rodas_events.rs): the error estimate vanishes on the piecewise
+    // As under Rodas (tests/integrator/rodas_events.rs): the error estimate vanishes on the piecewise
     // quadratic solution, so h_max keeps the scheduled stop beyond the step that finds the
     // event.
     let o = SolverOptions {

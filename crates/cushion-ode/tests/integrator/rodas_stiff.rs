@@ -2,7 +2,7 @@
 //! solutions (Test Set for IVP Solvers, F. Mazzia and C. Magherini, University of Bari;
 //! Hairer & Wanner, *Solving ODEs II*, Sec. IV.10), with bounded work.
 //!
-//! The counts are printed (`cargo test -p cushion-ode --test rodas_stiff -- --nocapture`).
+//! The counts are printed (`cargo test -p cushion-ode --test integrator rodas_stiff -- --nocapture`).
 //! `rhs_evals` counts every evaluation of `f`, those of the initial step selection included;
 //! all problems here give their Jacobian, so none is spent on finite differences. Hairer's
 //! RODAS (same coefficients, same controller) counts `f` the same way (one per accepted step
