@@ -29,7 +29,12 @@ fn main() {
                     }
                 }
             }
-            if let Some(p) = git(&["rev-parse", "--path-format=absolute", "--git-path", "packed-refs"]) {
+            if let Some(p) = git(&[
+                "rev-parse",
+                "--path-format=absolute",
+                "--git-path",
+                "packed-refs",
+            ]) {
                 if Path::new(&p).exists() {
                     println!("cargo:rerun-if-changed={p}");
                 }

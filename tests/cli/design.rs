@@ -499,7 +499,15 @@ fn ctrl_c_stops_a_question_and_writes_nothing() {
     let out = tmp.path().join("stopped");
     let file = root().join("sweeps/design-question.toml");
     let child = Command::new(BIN)
-        .args(["design", s(&file), "--out", s(&out), "--threads", "1", "--quiet"])
+        .args([
+            "design",
+            s(&file),
+            "--out",
+            s(&out),
+            "--threads",
+            "1",
+            "--quiet",
+        ])
         .stderr(std::process::Stdio::piped())
         .spawn()
         .expect("cushion runs");
@@ -512,6 +520,9 @@ fn ctrl_c_stops_a_question_and_writes_nothing() {
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(130), "{err}");
-    assert!(err.contains("stopped (interrupted); nothing written"), "{err}");
+    assert!(
+        err.contains("stopped (interrupted); nothing written"),
+        "{err}"
+    );
     assert!(!out.exists(), "nothing written");
 }

@@ -550,7 +550,11 @@ fn the_default_method_finishes_the_compressible_liquid() {
     let v = json(&["--set", "hydraulic.bulk_modulus=1.5e9"]);
     assert_eq!(v["status"], "ok");
     assert!(v["stats"]["method_switches"].as_u64().unwrap() >= 1);
-    assert!(v["stats"]["rhs_evals"].as_u64().unwrap() < 20_000, "{}", v["stats"]);
+    assert!(
+        v["stats"]["rhs_evals"].as_u64().unwrap() < 20_000,
+        "{}",
+        v["stats"]
+    );
     let o = cushion(&[
         "--set",
         "hydraulic.bulk_modulus=1.5e9",

@@ -179,14 +179,20 @@ mod tests {
         let start = vec![0.0, 0.5];
         let mut without = Climb::new(0, start.clone(), peak(&start), 0.125);
         let mut with = without.clone();
-        let probing = Rules { probe_halvings: 1, ..RULES };
+        let probing = Rules {
+            probe_halvings: 1,
+            ..RULES
+        };
         for (c, rules) in [(&mut without, &RULES), (&mut with, &probing)] {
             while !c.done {
                 c.poll(&[true, true]);
                 c.decide(&peak, rules);
             }
         }
-        assert_eq!(without.center, start, "without a probe the climb stops at its start");
+        assert_eq!(
+            without.center, start,
+            "without a probe the climb stops at its start"
+        );
         let best = 1.0 + 0.02 - 0.1 * 0.06;
         assert!(best - peak(&with.center) < 1e-6 * best, "{:?}", with.center);
     }

@@ -125,9 +125,8 @@ pub fn file_config<T>(
         table
             .entry("name")
             .or_insert_with(|| toml::Value::String(default_name.into()));
-        let text = toml::to_string(&table).map_err(|e| {
-            config_error(format!("{what} config: cannot be written as TOML: {e}"))
-        })?;
+        let text = toml::to_string(&table)
+            .map_err(|e| config_error(format!("{what} config: cannot be written as TOML: {e}")))?;
         return from_str_at(&text, Path::new("<dict>"))
             .map_err(|e| config_error(format!("{what} config: {e}")));
     }

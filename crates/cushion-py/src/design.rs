@@ -21,7 +21,13 @@ use crate::sweep::{ipc_bytes, run_detached};
 
 /// The design question a user gave: a path to a design file, or a dict of the same shape.
 fn design_from(config: &Bound<'_, PyAny>) -> PyResult<DesignFile> {
-    file_config(config, "design", "design", DesignFile::from_file, DesignFile::from_str_at)
+    file_config(
+        config,
+        "design",
+        "design",
+        DesignFile::from_file,
+        DesignFile::from_str_at,
+    )
 }
 
 /// An answered design question (see `cushion.Design`, which wraps it).
@@ -56,7 +62,12 @@ impl DesignAnswer {
     /// The design keys, in the file's order.
     #[getter]
     fn design_keys(&self) -> Vec<String> {
-        self.result.file.design.iter().map(|a| a.key.clone()).collect()
+        self.result
+            .file
+            .design
+            .iter()
+            .map(|a| a.key.clone())
+            .collect()
     }
 
     /// The output folder, when the files were written.

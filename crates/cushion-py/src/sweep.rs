@@ -24,7 +24,13 @@ const POLL: Duration = Duration::from_millis(100);
 
 /// The sweep a user gave: a path to a sweep file, or a dict of the same shape.
 fn sweep_from(config: &Bound<'_, PyAny>) -> PyResult<SweepFile> {
-    file_config(config, "sweep", "sweep", SweepFile::from_file, SweepFile::from_str_at)
+    file_config(
+        config,
+        "sweep",
+        "sweep",
+        SweepFile::from_file,
+        SweepFile::from_str_at,
+    )
 }
 
 /// Run `work` on another thread with the GIL released. Meanwhile, at most every [`POLL`], call

@@ -22,10 +22,10 @@ use crate::error::{config, SensitivityError};
 use crate::saltelli::SaltelliSample;
 use crate::sobol::{analyze, Sensitivity, SobolOptions};
 
-pub use crate::study_options::{OnFailed, StudyOptions, STUDY_KEYS};
 pub use crate::long_table::{
     csv_text, long_schema, long_table, parquet_bytes, write_study, STUDY_FILES,
 };
+pub use crate::study_options::{OnFailed, StudyOptions, STUDY_KEYS};
 
 /// The numeric columns of a summary (floats, integers, booleans as 0/1) that are outputs: all
 /// but `run` and the inputs.
@@ -60,10 +60,7 @@ pub fn resolve_outputs(
             return Err(config(
                 "[sensitivity] outputs",
                 format!("{name:?}"),
-                format!(
-                    "not a numeric summary field (allowed: {})",
-                    all.join(", ")
-                ),
+                format!("not a numeric summary field (allowed: {})", all.join(", ")),
             ));
         }
         if req[..i].contains(name) {
@@ -112,9 +109,13 @@ impl Study {
 }
 
 fn column<'a>(batch: &'a RecordBatch, name: &str) -> Result<&'a ArrayRef, SensitivityError> {
-    batch
-        .column_by_name(name)
-        .ok_or_else(|| config("summary", format!("no column `{name}`"), "a run summary has it"))
+    batch.column_by_name(name).ok_or_else(|| {
+        config(
+            "summary",
+            format!("no column `{name}`"),
+            "a run summary has it",
+        )
+    })
 }
 
 /// The values of a numeric column as floats (booleans as 0 and 1, a missing value NaN).
@@ -345,7 +346,13 @@ mod tests {
         let pts: Vec<Vec<f64>> = (0..n as u64).map(|r| sample.unit_point(r)).collect();
         let y: Vec<f64> = pts.iter().map(|p| p[0] + 2.0 * p[1] * p[1]).collect();
         let status: Vec<&str> = (0..n)
-            .map(|r| if failed.contains(&r) { "max_steps" } else { "ok" })
+            .map(|r| {
+                if failed.contains(&r) {
+                    "max_steps"
+                } else {
+                    "ok"
+                }
+            })
             .collect();
         let schema = Arc::new(Schema::new(vec![
             Field::new("run", DataType::Int64, false),
@@ -357,8 +364,12 @@ mod tests {
         ]));
         let cols: Vec<ArrayRef> = vec![
             Arc::new(Int64Array::from((0..n as i64).collect::<Vec<_>>())),
-            Arc::new(Float64Array::from(pts.iter().map(|p| p[0]).collect::<Vec<_>>())),
-            Arc::new(Float64Array::from(pts.iter().map(|p| p[1]).collect::<Vec<_>>())),
+            Arc::new(Float64Array::from(
+                pts.iter().map(|p| p[0]).collect::<Vec<_>>(),
+            )),
+            Arc::new(Float64Array::from(
+                pts.iter().map(|p| p[1]).collect::<Vec<_>>(),
+            )),
             Arc::new(StringArray::from(status)),
             Arc::new(Float64Array::from(y.clone())),
             Arc::new(BooleanArray::from(vec![false; n])),
@@ -394,12 +405,22 @@ mod tests {
         let e = run_study(std::slice::from_ref(&b), &inputs(), &s, &outputs, &opts).unwrap_err();
         let msg = e.to_string();
         assert!(msg.starts_with("2 of 32 runs did not end ok"), "{msg}");
-        assert!(msg.contains("run 5 (a = ") && msg.contains("): max_steps; run 30 ("), "{msg}");
+        assert!(
+            msg.contains("run 5 (a = ") && msg.contains("): max_steps; run 30 ("),
+            "{msg}"
+        );
 
         opts.on_failed = OnFailed::DropBasePoint;
         let st = run_study(std::slice::from_ref(&b), &inputs(), &s, &outputs, &opts).unwrap();
         // Rows 5 and 30 lie in the blocks of base points 1 and 7 (4 rows each).
-        assert_eq!((st.base_points_used, st.dropped_base_points(), st.failed_runs), (6, 2, 2));
+        assert_eq!(
+            (
+                st.base_points_used,
+                st.dropped_base_points(),
+                st.failed_runs
+            ),
+            (6, 2, 2)
+        );
         let kept: Vec<f64> = (0..8)
             .filter(|i| *i != 1 && *i != 7)
             .flat_map(|i| y[i * 4..(i + 1) * 4].to_vec())
@@ -438,11 +459,26 @@ mod tests {
             }
         );
         for (text, want) in [
-            ("outputs = []", "[sensitivity] outputs = []: must be a non-empty list"),
-            ("resamples = 1", "[sensitivity] resamples = 1: must be an integer from 2"),
-            ("conf_level = 1.0", "[sensitivity] conf_level = 1.0: must be a number strictly"),
-            ("seed = -1", "[sensitivity] seed = -1: must be an integer >= 0"),
-            ("on_failed = \"skip\"", "[sensitivity] on_failed = \"skip\": allowed"),
+            (
+                "outputs = []",
+                "[sensitivity] outputs = []: must be a non-empty list",
+            ),
+            (
+                "resamples = 1",
+                "[sensitivity] resamples = 1: must be an integer from 2",
+            ),
+            (
+                "conf_level = 1.0",
+                "[sensitivity] conf_level = 1.0: must be a number strictly",
+            ),
+            (
+                "seed = -1",
+                "[sensitivity] seed = -1: must be an integer >= 0",
+            ),
+            (
+                "on_failed = \"skip\"",
+                "[sensitivity] on_failed = \"skip\": allowed",
+            ),
             ("resampels = 3", "[sensitivity] resampels = 3: unknown key"),
         ] {
             let t: toml::Table = text.parse().unwrap();

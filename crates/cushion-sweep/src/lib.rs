@@ -24,9 +24,7 @@ pub mod plan;
 pub mod sinks;
 
 pub(crate) use folder::invocations;
-pub use folder::{
-    journal, mcap_copy, merge, out_lock, parquet_io, provenance, report, runner,
-};
+pub use folder::{journal, mcap_copy, merge, out_lock, parquet_io, provenance, report, runner};
 pub use plan::{runs, sampling, summary_table, sweep_file};
 pub use sinks::{figure, mcap_read, trajectory_csv, trajectory_mcap};
 

@@ -3,7 +3,6 @@
 //! classified right, the runs spent are a small fraction of a brute-force grid's, the best
 //! design is where it should be, and the answer does not depend on how batches are evaluated.
 
-
 use crate::common::{drive_refinement, Order};
 use cushion_design::{
     Axes, Axis, DesignError, Limit, Limits, Objective, RefineSettings, Refinement, Sense,

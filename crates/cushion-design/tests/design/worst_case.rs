@@ -2,7 +2,6 @@
 //! comes within the tolerance of it, never beyond it (it is a real run), and its witness gives
 //! the value back to the bit.
 
-
 use crate::common::{drive_search, Order};
 use cushion_design::{
     Axes, Axis, DesignError, Direction, SearchSettings, Target, WorstCaseSearch, WorstCases,

@@ -5,7 +5,6 @@
 
 use cushion_model::{simulate, RunOptions, RunStatus, Summary};
 
-
 use crate::common::{kept_scene, paper, run_ok as run};
 
 /// The largest difference of the results a user reads, each over its own scale: speeds over

@@ -51,7 +51,10 @@ fn dop853_finds_no_contact_in_an_unstable_dense_output() {
         "peak robot force {:.4} N (reference {:.4}), object final speed {speed:.1e} m/s off",
         r.peak_robot_force, reference.peak_robot_force
     );
-    assert!(force < 1e-3 * reference.peak_robot_force.abs(), "{force:.2e} N off");
+    assert!(
+        force < 1e-3 * reference.peak_robot_force.abs(),
+        "{force:.2e} N off"
+    );
     assert!(speed < 1e-6, "object final speed {speed:.1e} m/s off");
 }
 

@@ -325,6 +325,9 @@ fn a_slip_that_touches_zero_and_turns_back_goes_on() {
     let reference = common::reference(common::kept_scene("wide-396", &[]));
     let speed = |x: &cushion_model::Summary| x.object_final_velocity.unwrap();
     let off = (speed(&r.summary) - speed(&reference)).abs();
-    println!("object final speed {off:.1e} m/s off, {} events", r.summary.stats.events);
+    println!(
+        "object final speed {off:.1e} m/s off, {} events",
+        r.summary.stats.events
+    );
     assert!(off < 1e-4, "object final speed {off:.1e} m/s off");
 }

@@ -547,7 +547,10 @@ fn compressible_liquid_agrees_with_the_lumped_model_and_is_stiff() {
     // under dp5: the explicit method pays for the stiffness, and says so (below)
     let rich = with(
         lumped.clone(),
-        &[("hydraulic.bulk_modulus", "1.5e9"), ("solver.method", "dp5")],
+        &[
+            ("hydraulic.bulk_modulus", "1.5e9"),
+            ("solver.method", "dp5"),
+        ],
     );
     assert_eq!(Layout::of(&lumped).n + 3, Layout::of(&rich).n);
     let a = run(&lumped).summary;

@@ -177,7 +177,10 @@ impl Design {
                 })
                 .collect(),
             Mode::Saltelli => {
-                let sample = self.saltelli.as_ref().expect("saltelli mode has its sample");
+                let sample = self
+                    .saltelli
+                    .as_ref()
+                    .expect("saltelli mode has its sample");
                 sample
                     .unit_point(run)
                     .into_iter()
@@ -284,7 +287,11 @@ mod tests {
             for r in 0..d.n_runs() {
                 let u = s.unit_point(r);
                 let p: Vec<f64> = d.point(r).iter().map(|v| v.as_float().unwrap()).collect();
-                assert_eq!(p[0], (0.01 + u[0] * (0.1 - 0.01)).clamp(0.01, 0.1), "run {r}");
+                assert_eq!(
+                    p[0],
+                    (0.01 + u[0] * (0.1 - 0.01)).clamp(0.01, 0.1),
+                    "run {r}"
+                );
                 let g = (300f64.ln() + u[1] * (1e5f64.ln() - 300f64.ln())).exp();
                 assert_eq!(p[1], g.clamp(300.0, 1e5), "run {r}");
                 assert_eq!(p[2], tri.quantile(u[2]), "run {r}");
@@ -363,7 +370,10 @@ mod tests {
             let v = column(&d, 3);
             let mean = v.iter().sum::<f64>() / n as f64;
             let sd = (v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / n as f64).sqrt();
-            assert!((mean - 5.0).abs() < 0.01 && (sd / 2.0 - 1.0).abs() < 0.01, "{mean} {sd}");
+            assert!(
+                (mean - 5.0).abs() < 0.01 && (sd / 2.0 - 1.0).abs() < 0.01,
+                "{mean} {sd}"
+            );
             let k = ks(v, |x| phi((x - 5.0) / 2.0));
             assert!(k < bound, "{mode} normal: KS {k}");
         }

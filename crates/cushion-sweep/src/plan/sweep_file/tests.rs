@@ -63,7 +63,10 @@ const SALTELLI: &str = "[sampling]\nmode = \"saltelli\"\nsamples = 8\n";
 fn saltelli_counts_runs() {
     let two = "[[axis]]\nkey = \"robot.dead_time\"\nrange = [0, 0.1]\n[[axis]]\nkey = \"object.mass\"\nrange = [0.05, 1]\n";
     let s = parse(&format!("{SALTELLI}{two}")).unwrap();
-    assert_eq!((s.mode, s.second_order, s.n_runs().unwrap()), (Mode::Saltelli, true, 8 * 6));
+    assert_eq!(
+        (s.mode, s.second_order, s.n_runs().unwrap()),
+        (Mode::Saltelli, true, 8 * 6)
+    );
     let s = parse(&format!("{SALTELLI}second_order = false\n{two}")).unwrap();
     assert_eq!(s.n_runs().unwrap(), 8 * 4);
     let s = parse(&format!("{SALTELLI}{two}[sensitivity]\nresamples = 10\n")).unwrap();
@@ -74,20 +77,62 @@ fn saltelli_counts_runs() {
 fn distribution_errors_name_the_key() {
     let axis = |body: &str| format!("{SALTELLI}[[axis]]\nkey = \"object.mass\"\n{body}\n");
     let cases: Vec<(String, &str)> = vec![
-        (axis("dist = \"normal\"\nmean = 0.2\nsd = 0\nrange = [0.1, 1]"), "object.mass`): object.mass: sd = 0: must be > 0"),
-        (axis("dist = \"normal\"\nmean = 0.2\nsd = 0.1"), "object.mass must be positive"),
-        (axis("dist = \"triangular\"\nmode = 2\nrange = [0.1, 1]"), "object.mass: mode = 2: must lie in the range [0.1, 1]"),
-        (axis("dist = \"triangular\"\nmode = 0.5"), "dist = \"triangular\" needs `range"),
-        (axis("dist = \"normal\"\nsd = 0.1"), "dist = \"normal\" needs `mean`"),
-        (axis("dist = \"uniform\"\nsd = 0.1\nrange = [0.1, 1]"), "`sd` does not go with dist = \"uniform\""),
-        (axis("dist = \"gamma\"\nrange = [0.1, 1]"), "dist = \"gamma\": allowed"),
-        (axis("dist = \"lognormal\"\nmedian = -1\nsigma = 0.3"), "median = -1: must be > 0"),
-        (axis("dist = \"normal\"\nmean = 0.2\nsd = 0.1\nscale = \"log\"\nrange = [0.1, 1]"), "do not go together"),
-        (axis("values = [0.1, 0.2]"), "a saltelli sweep takes only `range` axes"),
-        (axis("values = [0.1, 0.2]\ndist = \"normal\""), "`dist` goes with a `range` axis only"),
-        (format!("{}[[axis]]\nkey = \"object.mass\"\nrange = [0.1, 1]\n", SALTELLI.replace("8", "12")), "saltelli takes a power of two"),
+        (
+            axis("dist = \"normal\"\nmean = 0.2\nsd = 0\nrange = [0.1, 1]"),
+            "object.mass`): object.mass: sd = 0: must be > 0",
+        ),
+        (
+            axis("dist = \"normal\"\nmean = 0.2\nsd = 0.1"),
+            "object.mass must be positive",
+        ),
+        (
+            axis("dist = \"triangular\"\nmode = 2\nrange = [0.1, 1]"),
+            "object.mass: mode = 2: must lie in the range [0.1, 1]",
+        ),
+        (
+            axis("dist = \"triangular\"\nmode = 0.5"),
+            "dist = \"triangular\" needs `range",
+        ),
+        (
+            axis("dist = \"normal\"\nsd = 0.1"),
+            "dist = \"normal\" needs `mean`",
+        ),
+        (
+            axis("dist = \"uniform\"\nsd = 0.1\nrange = [0.1, 1]"),
+            "`sd` does not go with dist = \"uniform\"",
+        ),
+        (
+            axis("dist = \"gamma\"\nrange = [0.1, 1]"),
+            "dist = \"gamma\": allowed",
+        ),
+        (
+            axis("dist = \"lognormal\"\nmedian = -1\nsigma = 0.3"),
+            "median = -1: must be > 0",
+        ),
+        (
+            axis("dist = \"normal\"\nmean = 0.2\nsd = 0.1\nscale = \"log\"\nrange = [0.1, 1]"),
+            "do not go together",
+        ),
+        (
+            axis("values = [0.1, 0.2]"),
+            "a saltelli sweep takes only `range` axes",
+        ),
+        (
+            axis("values = [0.1, 0.2]\ndist = \"normal\""),
+            "`dist` goes with a `range` axis only",
+        ),
+        (
+            format!(
+                "{}[[axis]]\nkey = \"object.mass\"\nrange = [0.1, 1]\n",
+                SALTELLI.replace("8", "12")
+            ),
+            "saltelli takes a power of two",
+        ),
         (format!("{SALTELLI}second_order = 1\n"), "second_order = 1"),
-        ("[sampling]\nmode = \"sobol\"\nsamples = 8\nsecond_order = true\n".to_string(), "`second_order` is for saltelli only"),
+        (
+            "[sampling]\nmode = \"sobol\"\nsamples = 8\nsecond_order = true\n".to_string(),
+            "`second_order` is for saltelli only",
+        ),
         (SALTELLI.to_string(), "saltelli needs 1 to"),
     ];
     for (text, want) in cases {

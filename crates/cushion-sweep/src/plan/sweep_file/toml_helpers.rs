@@ -18,11 +18,7 @@ pub fn as_number(v: &Value) -> Option<f64> {
 
 /// Every key of `table` is in `allowed`; else the message names the key, where it is and what
 /// is allowed.
-pub fn check_keys(
-    table: &toml::Table,
-    allowed: &[&str],
-    where_: &str,
-) -> Result<(), String> {
+pub fn check_keys(table: &toml::Table, allowed: &[&str], where_: &str) -> Result<(), String> {
     for k in table.keys() {
         if !allowed.contains(&k.as_str()) {
             return Err(format!(
