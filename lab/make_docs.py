@@ -14,14 +14,17 @@ copied by hand. It writes:
 - docs/design.md, `design-vs-brute`: `design_vs_brute.py --tables` from
   lab/results/design_vs_brute.json;
 - docs/performance.md, `sensitivity-speed`: `sensitivity_speed.py --tables` from
-  lab/results/sensitivity_speed.json.
+  lab/results/sensitivity_speed.json;
+- docs/performance.md, `steel-ensemble`: `steel_ensemble.py --tables` from
+  lab/results/steel_ensemble.csv.
 
-The last three are the studies' own `--tables` modes, run with .venv/bin/python when it exists
+The last four are the studies' own `--tables` modes, run with .venv/bin/python when it exists
 (else this interpreter).
 Tables that come from runs without a committed result file (docs/stability.md's generated part,
 written by `python -m lab.stability_map`) are not touched. Exits with status 1 if a block's
 markers or a study's table could not be written. `--skip NAME ...` leaves blocks alone
-(`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`): a study whose results are being made.
+(`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
+`steel-ensemble`): a study whose results are being made.
 """
 
 import argparse
@@ -87,6 +90,7 @@ STUDIES = {
     "default-method": "default_method.py",
     "design-vs-brute": "design_vs_brute.py",
     "sensitivity-speed": "sensitivity_speed.py",
+    "steel-ensemble": "steel_ensemble.py",
 }
 
 

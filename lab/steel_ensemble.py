@@ -3,6 +3,7 @@
 neither can draw a lucky error.
 
     .venv/bin/python -m lab.steel_ensemble [--dead-times MS ...] [--quick] [--out DIR]
+    .venv/bin/python -m lab.steel_ensemble --tables   # docs/performance.md's table from the results
 
 On one scene the steel stops' final-speed error jumps about from one tolerance to the next, for
 the engine and for CyRK alike: it is the phase of the tool-object ringing as the contact opens
@@ -22,7 +23,8 @@ timing (five rounds, the smallest of the rounds' medians), the peer (CyRK's DOP8
 a numba right-hand side). Methods: the engine's dp5, dop853 and dp5 with the ledger off, and the
 peer's two, at quarter decades of rtol from 1e-3 to 1e-7 and at 1e-8 and 1e-9, atol = rtol /
 1000. About 12 minutes on the 2-vCPU AMD VM. Writes DIR/steel_ensemble.csv (one row per dead
-time, method and rtol) and prints the tables of docs/performance.md.
+time, method and rtol), prints the study's figures, and rewrites docs/performance.md's
+`steel-ensemble` block from the file (as `--tables` and `python3 -m lab.make_docs` do).
 """
 
 import argparse
@@ -101,13 +103,43 @@ def level_cells(table, method):
     return ["-" if table[method].get(t) is None else f"{table[method][t][0] * 1e6:,.0f} µs" for t in LEVELS]
 
 
+RESULTS = os.path.join(wp.ROOT, "lab", "results", "steel_ensemble.csv")
+BLOCK = "steel-ensemble"
+
+
+def level_table(df):
+    """docs/performance.md's table: per method, the mean time per run where the median
+    final-speed error over the dead times first crosses each level / stays below it."""
+    ens = ensemble(df)
+    first = wp.interpolate(ens, "ensemble", LEVELS)
+    settled = wp.interpolate(ens, "ensemble", LEVELS, settled=True)
+    lines = ["| method | " + " | ".join(f"1e-{round(-math.log10(t))}" for t in LEVELS) + " |",
+             "|---|" + "---|" * len(LEVELS)]
+    for m in OURS + PEERS:
+        if m in first:
+            cells = [f"{a} / {b}" for a, b in zip(level_cells(first, m), level_cells(settled, m))]
+            lines.append(f"| {wp.LABEL.get(m, m)} | " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def write_block(path=RESULTS):
+    """Rewrite the `steel-ensemble` block of docs/performance.md from the result file."""
+    import pandas as pd
+    from lab.make_docs import PERFORMANCE, replace_block
+    df = pd.read_csv(path, comment="#")
+    return replace_block(PERFORMANCE, BLOCK, level_table(df), "lab/results/steel_ensemble.csv")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--dead-times", nargs="+", type=int, default=[30, 40, 50, 60, 70, 80, 90, 100],
                     help="robot dead times, ms")
     ap.add_argument("--quick", action="store_true", help="a smoke run: three tolerances, one round")
+    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' table from the results")
     ap.add_argument("--out", default=os.path.join(wp.ROOT, "lab", "results"), help="folder of steel_ensemble.csv")
     args = ap.parse_args()
+    if args.tables:
+        sys.exit(0 if write_block() else 1)
     args.budget, args.ref_budget, args.peer_slow = 30.0, 300.0, 1.0
     args.target, args.most, args.rounds = (0.05, 3, 1) if args.quick else (0.2, 2000, 5)
 
@@ -142,12 +174,9 @@ def main():
     settled = wp.interpolate(ens, "ensemble", LEVELS, settled=True)
     wp.log(f"\nsteel stops over {len(names)} dead times: mean time per run where the median final-speed error "
            "first crosses each level / where it stays below it")
-    wp.log("| method | " + " | ".join(f"{t:g}" for t in LEVELS) + " |")
-    wp.log("|---|" + "---|" * len(LEVELS))
-    for m in OURS + PEERS:
-        if m in first:
-            cells = [f"{a} / {b}" for a, b in zip(level_cells(first, m), level_cells(settled, m))]
-            wp.log(f"| {wp.LABEL.get(m, m)} | " + " | ".join(cells) + " |")
+    wp.log(level_table(df))
+    if not args.quick and os.path.abspath(path) == RESULTS:
+        write_block(path)
     wp.log("\nper rtol: median / largest error over the dead times (m/s), mean evaluations, mean µs per run")
     for m in OURS + PEERS:
         g = ens[ens.method == m]

@@ -94,7 +94,7 @@ ROOT = os.path.dirname(HERE)
 from lab import scene_scipy as ss  # noqa: E402
 from lab import cyrk_peer  # noqa: E402
 from lab.study_tables import target_lines  # noqa: E402
-import stiff_scenes_scipy as sts  # noqa: E402
+from lab import stiff_scenes_scipy as sts  # noqa: E402
 
 try:
     import cushion  # noqa: E402
