@@ -9,10 +9,17 @@ import numpy.typing as npt
 __version__: str
 # the trajectory's columns, in the order of its rows: t, x_r, v_r, x_t, v_t, x_p, v_p, s, p1, F_c, F_r
 COLUMNS: tuple[str, ...]
+# figure 3's panels, top to bottom: dicts of title, quantity, symbol, unit, factor (from SI),
+# curves (dicts of column, name, symbol, color) and absent (the note when nothing is drawn)
+FIGURE3: tuple[dict[str, Any], ...]
+# figure 3's dashed event lines: dicts of field (of the summary), label and color
+FIGURE3_MARKS: tuple[dict[str, Any], ...]
 __all__ = [
     "ConfigError",
     "__version__",
     "COLUMNS",
+    "FIGURE3",
+    "FIGURE3_MARKS",
     "Scene",
     "DesignAnswer",
     "defaults",

@@ -3,6 +3,7 @@ numbers (marker positions, medians, worst-case cells) are checked against the su
 independent pandas computation."""
 
 import os
+import re
 
 os.environ["MPLBACKEND"] = "Agg"  # headless: set before matplotlib is imported
 
@@ -130,6 +131,33 @@ def test_run_draws_four_panels_with_detection_and_brake_on_each(hydraulic, tmp_p
     gas = panels[2].lines[0]
     np.testing.assert_allclose(gas.get_ydata(), hydraulic.p1 * 1e-3)
     assert "[kPa]" in panels[2].get_ylabel()
+
+
+def test_run_and_the_commands_svg_draw_the_same_layout(hydraulic, cli, tmp_path):
+    """Figure 3 in matplotlib and the command's SVG come from one layout (the extension's
+    FIGURE3): the same panels, y labels, curves and colours, the math text aside."""
+    from matplotlib.colors import to_hex
+
+    from cushion._cushion import FIGURE3
+
+    svg_path = tmp_path / "fig3.svg"
+    done = cli("simulate", str(SCENES / "paper-hydraulic-dt70.toml"), "--plot", str(svg_path))
+    assert done.returncode == 0, done.stderr
+    svg = svg_path.read_text().lower()
+    texts = {t.strip() for t in re.findall(r"<text[^>]*>(.*?)</text>", svg_path.read_text(), flags=re.S)}
+    fig = cplot.run(hydraulic)
+    panels = [ax for ax in fig.axes if ax.get_ylabel()]
+    assert [ax.get_title(loc="left") for ax in panels] == [p["title"] for p in FIGURE3]
+    plain = lambda text: text.replace("$", "")  # noqa: E731
+    for ax, spec in zip(panels, FIGURE3):
+        assert plain(ax.get_ylabel()) in texts, ax.get_ylabel()
+        drawn = [ln for ln in ax.lines if ln.get_gid() is None]
+        assert [plain(ln.get_label()) for ln in drawn] == [f"{c['name']} {c['symbol']}" for c in spec["curves"]]
+        assert [to_hex(ln.get_color()) for ln in drawn] == [c["color"] for c in spec["curves"]]
+        for c in spec["curves"]:
+            assert f"{c['name']} {c['symbol']}" in texts
+            np.testing.assert_allclose(drawn[spec["curves"].index(c)].get_ydata(), getattr(hydraulic, c["column"]) * spec["factor"])
+            assert c["color"] in svg
 
 
 def test_run_method_writes_the_same_figure(hydraulic, tmp_path):

@@ -10,6 +10,7 @@ mod command;
 mod convert;
 mod design;
 mod errors;
+mod figure;
 mod mcap_read;
 mod scene;
 mod sensitivity;
@@ -32,6 +33,10 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "COLUMNS",
         pyo3::types::PyTuple::new(py, cushion_model::TrajectoryPoint::COLUMNS)?,
     )?;
+    // Figure 3's panels and event lines, the one layout `cushion.plot.run` and the command's
+    // SVG share.
+    m.add("FIGURE3", figure::panels(py)?)?;
+    m.add("FIGURE3_MARKS", figure::marks(py)?)?;
     m.add_class::<scene::PreparedScene>()?;
     m.add_class::<design::DesignAnswer>()?;
     m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;

@@ -10,8 +10,8 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from .._cushion import COLUMNS
-from ._units import _BRAKE, _DETECT, _save, label
+from .._cushion import COLUMNS, FIGURE3, FIGURE3_MARKS
+from ._units import _save, label
 
 
 class _Curve(NamedTuple):
@@ -27,37 +27,26 @@ class _Panel(NamedTuple):
     curves: tuple[_Curve, ...]
 
 
-_POSITIONS = _Panel(
-    "Positions",
-    "position [mm]",
-    1e3,
-    (
-        _Curve("x_r", "robot flange $x_r$", "C0"),
-        _Curve("x_t", "tool $x_t$", "C1"),
-        _Curve("x_p", "object $x_p$", "C2"),
-    ),
+def _math(symbol: str) -> str:
+    """A layout symbol ("x_r", "p_1") as matplotlib math text."""
+    return f"${symbol}$" if symbol else ""
+
+
+def _panel(spec: dict[str, Any]) -> _Panel:
+    """A panel of the layout the command's SVG draws too (the extension's ``FIGURE3``)."""
+    ylabel = " ".join(x for x in (spec["quantity"], _math(spec["symbol"])) if x) + f" [{spec['unit']}]"
+    curves = tuple(_Curve(c["column"], f"{c['name']} {_math(c['symbol'])}", c["color"]) for c in spec["curves"])
+    return _Panel(spec["title"], ylabel, spec["factor"], curves)
+
+
+_POSITIONS, _VELOCITIES, _GAS, _FORCES = (_panel(spec) for spec in FIGURE3)
+_F_R = next(c for c in _FORCES.curves if c.column == "F_r")
+# The comparison's second row: the force on the robot alone, in the forces panel's unit and colour.
+_ROBOT_FORCE = _Panel(
+    "Force on the robot", f"force on the robot $F_r$ [{FIGURE3[3]['unit']}]", _FORCES.factor, (_F_R._replace(label="$F_r$"),)
 )
-_VELOCITIES = _Panel(
-    "Velocities",
-    "velocity [m/s]",
-    1.0,
-    (
-        _Curve("v_r", "robot flange $v_r$", "C0"),
-        _Curve("v_t", "tool $v_t$", "C1"),
-        _Curve("v_p", "object $v_p$", "C2"),
-    ),
-)
-_GAS = _Panel("Gas pressure", "gas pressure $p_1$ [kPa]", 1e-3, (_Curve("p1", "gas pressure $p_1$", "C0"),))
-_FORCES = _Panel(
-    "Forces",
-    "force [N]",
-    1.0,
-    (
-        _Curve("F_r", "force on the robot $F_r$", "C0"),
-        _Curve("F_c", "contact force tool-object $F_c$", "C4"),
-    ),
-)
-_ROBOT_FORCE = _Panel("Force on the robot", "force on the robot $F_r$ [N]", 1.0, (_Curve("F_r", "$F_r$", "C0"),))
+# The dashed event lines: (label, summary field, colour).
+_MARKS = tuple((m["label"], m["field"], m["color"]) for m in FIGURE3_MARKS)
 
 
 def _first_event(run: Any, name: str) -> float | None:
@@ -72,7 +61,7 @@ def marks(run: Any) -> dict[str, float | None]:
     ``sensor`` and ``brake`` events."""
     s = run.summary
     if s is not None:
-        return {"detection": s.get("t_detect"), "brake start": s.get("t_brake")}
+        return {label: s.get(field) for label, field, _ in _MARKS}
     return {"detection": _first_event(run, "sensor"), "brake start": _first_event(run, "brake")}
 
 
@@ -109,7 +98,7 @@ def _draw_marks(
 ) -> None:
     """Dashed vertical lines at detection (red) and brake start (grey), x in ms; each line's
     gid is ``"detection"`` or ``"brake start"`` so it can be found again."""
-    for name, color in (("detection", _DETECT), ("brake start", _BRAKE)):
+    for name, _, color in _MARKS:
         t = times.get(name)
         if t is None or not np.isfinite(t):
             continue

@@ -104,8 +104,6 @@ def label(name: str, magnitude: bool = False) -> str:
 
 #: Colours per module, as in the command's sweep report.
 MODULE_COLORS = {"hydraulic": "#1f77b4", "bistable": "#ff7f0e", "rigid": "#6e6e6e"}
-_DETECT = "#d62728"
-_BRAKE = "#6e6e6e"
 
 
 

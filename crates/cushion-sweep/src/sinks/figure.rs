@@ -6,7 +6,8 @@
 //! 4. force of the module on the robot `F_r` and the tool-object contact force `F_c` (N).
 //!
 //! The detection time (sensor switching) is a dashed red vertical line in every panel, the
-//! brake start a dashed grey one.
+//! brake start a dashed grey one. What is drawn (columns, units, labels, colours) is the table
+//! of `layout.rs`, which `cushion.plot.run` draws from too.
 
 use std::io;
 use std::path::Path;
@@ -14,109 +15,66 @@ use std::path::Path;
 use cushion_model::{Summary, Trajectory, TrajectoryPoint};
 use plotters::prelude::*;
 
+mod layout;
 mod panel;
 
+pub use layout::{CurveSpec, MarkSpec, PanelSpec, FIGURE3, FIGURE3_MARKS};
 use panel::draw_panel;
-
-const ROBOT: RGBColor = RGBColor(31, 119, 180);
-const TOOL: RGBColor = RGBColor(255, 127, 14);
-const OBJECT: RGBColor = RGBColor(44, 160, 44);
-const DETECT: RGBColor = RGBColor(214, 39, 40);
-const BRAKE: RGBColor = RGBColor(110, 110, 110);
-const CONTACT: RGBColor = RGBColor(148, 103, 189);
 
 /// Figure size in pixels (width, height).
 pub const SIZE: (u32, u32) = (1200, 1300);
 
-/// One curve: label, colour, value of a point in plot units.
+/// One curve as drawn: its legend text, colour, column of `TrajectoryPoint::values` and the
+/// factor to the panel's unit.
 struct Curve {
-    label: &'static str,
+    label: String,
     color: RGBColor,
-    value: fn(&TrajectoryPoint) -> f64,
+    column: usize,
+    factor: f64,
+}
+
+impl Curve {
+    fn value(&self, p: &TrajectoryPoint) -> f64 {
+        p.values()[self.column] * self.factor
+    }
 }
 
 struct Panel {
     caption: &'static str,
-    y_desc: &'static str,
+    y_desc: String,
     curves: Vec<Curve>,
     /// Shown instead of the curves when no curve has a finite value.
     absent: &'static str,
 }
 
+fn color(hex: &str) -> RGBColor {
+    let (r, g, b) = layout::rgb(hex);
+    RGBColor(r, g, b)
+}
+
+/// The panels of [`FIGURE3`], ready to draw.
 fn panels() -> Vec<Panel> {
-    vec![
-        Panel {
-            caption: "Positions",
-            y_desc: "position [mm]",
-            curves: vec![
-                Curve {
-                    label: "robot flange x_r",
-                    color: ROBOT,
-                    value: |p| p.x_r * 1e3,
-                },
-                Curve {
-                    label: "tool x_t",
-                    color: TOOL,
-                    value: |p| p.x_t * 1e3,
-                },
-                Curve {
-                    label: "object x_p",
-                    color: OBJECT,
-                    value: |p| p.x_p * 1e3,
-                },
-            ],
-            absent: "no positions",
-        },
-        Panel {
-            caption: "Velocities",
-            y_desc: "velocity [m/s]",
-            curves: vec![
-                Curve {
-                    label: "robot flange v_r",
-                    color: ROBOT,
-                    value: |p| p.v_r,
-                },
-                Curve {
-                    label: "tool v_t",
-                    color: TOOL,
-                    value: |p| p.v_t,
-                },
-                Curve {
-                    label: "object v_p",
-                    color: OBJECT,
-                    value: |p| p.v_p,
-                },
-            ],
-            absent: "no velocities",
-        },
-        Panel {
-            caption: "Gas pressure",
-            y_desc: "pressure p1 [kPa]",
-            curves: vec![Curve {
-                label: "gas pressure p1",
-                color: ROBOT,
-                value: |p| p.p1 * 1e-3,
-            }],
-            absent: "no gas in this scene (n/a)",
-        },
-        Panel {
-            caption: "Forces",
-            y_desc: "force [N]",
-            curves: vec![
-                Curve {
-                    label: "force on the robot F_r",
-                    color: ROBOT,
-                    value: |p| p.f_r,
-                },
-                Curve {
-                    label: "contact force tool-object F_c",
-                    color: CONTACT,
-                    value: |p| p.f_c,
-                },
-            ],
-            absent: "no forces",
-        },
-    ]
+    FIGURE3
+        .iter()
+        .map(|spec| Panel {
+            caption: spec.title,
+            y_desc: spec.y_label(),
+            curves: spec
+                .curves
+                .iter()
+                .map(|c| Curve {
+                    label: c.label(),
+                    color: color(c.color),
+                    column: TrajectoryPoint::COLUMNS
+                        .iter()
+                        .position(|k| *k == c.column)
+                        .expect("figure 3's curves are trajectory columns (layout's test)"),
+                    factor: spec.factor,
+                })
+                .collect(),
+            absent: spec.absent,
+        })
+        .collect()
 }
 
 /// Draw figure 3 of one run as SVG text. `title` heads the figure (e.g. module and dead time).

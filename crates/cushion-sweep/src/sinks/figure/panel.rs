@@ -38,7 +38,7 @@ fn y_range(panel: &Panel, pts: &[TrajectoryPoint]) -> Option<(f64, f64)> {
     let mut hi = f64::NEG_INFINITY;
     for c in &panel.curves {
         for p in pts {
-            let v = (c.value)(p);
+            let v = c.value(p);
             if v.is_finite() {
                 lo = lo.min(v);
                 hi = hi.max(v);
@@ -96,7 +96,7 @@ fn panel_axes<'a, DB: DrawingBackend>(
     chart
         .configure_mesh()
         .x_desc("time [ms]")
-        .y_desc(panel.y_desc)
+        .y_desc(panel.y_desc.as_str())
         .x_labels(12)
         .y_labels(6)
         .light_line_style(RGBColor(235, 235, 235))
@@ -121,7 +121,9 @@ fn draw_absent<DB: DrawingBackend>(
         .draw_series(std::iter::once(Text::new(
             panel.absent,
             (x, 0.55),
-            ("sans-serif", 18).into_font().color(&BRAKE),
+            ("sans-serif", 18)
+                .into_font()
+                .color(&color(FIGURE3_MARKS[1].color)),
         )))
         .map_err(area_err)?;
     Ok(())
@@ -161,7 +163,7 @@ fn draw_curves<DB: DrawingBackend>(
                 .map_err(area_err)?;
         }
         legend.push(LegendEntry {
-            label: c.label.to_string(),
+            label: c.label.clone(),
             color: c.color,
             dashed: false,
         });
@@ -173,7 +175,7 @@ fn draw_curves<DB: DrawingBackend>(
 fn finite_segments(c: &Curve, pts: &[TrajectoryPoint]) -> Vec<Vec<(f64, f64)>> {
     let mut segments: Vec<Vec<(f64, f64)>> = vec![Vec::new()];
     for p in pts {
-        let v = (c.value)(p);
+        let v = c.value(p);
         if v.is_finite() {
             segments.last_mut().unwrap().push((p.t * 1e3, v));
         } else if !segments.last().unwrap().is_empty() {
@@ -193,8 +195,16 @@ fn draw_event_lines<DB: DrawingBackend>(
 ) -> io::Result<Vec<LegendEntry>> {
     let mut legend = Vec::new();
     for (t, label, color) in [
-        (summary.t_detect, "detection", DETECT),
-        (summary.t_brake, "brake start", BRAKE),
+        (
+            summary.t_detect,
+            FIGURE3_MARKS[0].label,
+            color(FIGURE3_MARKS[0].color),
+        ),
+        (
+            summary.t_brake,
+            FIGURE3_MARKS[1].label,
+            color(FIGURE3_MARKS[1].color),
+        ),
     ] {
         let Some(t) = t.filter(|t| t.is_finite()) else {
             continue;
