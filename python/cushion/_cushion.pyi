@@ -14,12 +14,16 @@ COLUMNS: tuple[str, ...]
 FIGURE3: tuple[dict[str, Any], ...]
 # figure 3's dashed event lines: dicts of field (of the summary), label and color
 FIGURE3_MARKS: tuple[dict[str, Any], ...]
+# how the charts show each summary metric and scene key: dicts of key, kind ("metric" or
+# "axis"), name, unit and factor (from SI)
+QUANTITIES: tuple[dict[str, Any], ...]
 __all__ = [
     "ConfigError",
     "__version__",
     "COLUMNS",
     "FIGURE3",
     "FIGURE3_MARKS",
+    "QUANTITIES",
     "Scene",
     "DesignAnswer",
     "defaults",

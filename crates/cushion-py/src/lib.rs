@@ -6,11 +6,11 @@
 //! streams that pyarrow turns into pandas frames. The pure-Python layer (`python/cushion/`)
 //! builds the user-facing objects (`Run`, DataFrames, plots, Dask).
 
+mod charts;
 mod command;
 mod convert;
 mod design;
 mod errors;
-mod figure;
 mod mcap_read;
 mod scene;
 mod sensitivity;
@@ -33,10 +33,11 @@ fn _cushion(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "COLUMNS",
         pyo3::types::PyTuple::new(py, cushion_model::TrajectoryPoint::COLUMNS)?,
     )?;
-    // Figure 3's panels and event lines, the one layout `cushion.plot.run` and the command's
-    // SVG share.
-    m.add("FIGURE3", figure::panels(py)?)?;
-    m.add("FIGURE3_MARKS", figure::marks(py)?)?;
+    // What the command's charts and `cushion.plot` share: figure 3's panels and event lines,
+    // and how each quantity is named.
+    m.add("FIGURE3", charts::panels(py)?)?;
+    m.add("FIGURE3_MARKS", charts::marks(py)?)?;
+    m.add("QUANTITIES", charts::quantities(py)?)?;
     m.add_class::<scene::PreparedScene>()?;
     m.add_class::<design::DesignAnswer>()?;
     m.add_function(wrap_pyfunction!(scene::defaults, m)?)?;

@@ -26,7 +26,7 @@ pub mod sinks;
 pub(crate) use folder::invocations;
 pub use folder::{journal, mcap_copy, merge, out_lock, parquet_io, provenance, report, runner};
 pub use plan::{runs, sampling, summary_table, sweep_file};
-pub use sinks::{figure, mcap_read, trajectory_csv, trajectory_mcap};
+pub use sinks::{figure, mcap_read, quantities, trajectory_csv, trajectory_mcap};
 
 pub use engine::{compute, compute_scenes, Hooks, Plan};
 pub use error::SweepError;

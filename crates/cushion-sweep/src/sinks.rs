@@ -3,5 +3,6 @@
 
 pub mod figure;
 pub mod mcap_read;
+pub mod quantities;
 pub mod trajectory_csv;
 pub mod trajectory_mcap;

@@ -13,6 +13,8 @@ import pandas as pd
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from .._cushion import QUANTITIES
+
 # Names, units and display scales
 # --------------------------------------------------------------------------------------------
 
@@ -26,46 +28,16 @@ class Quantity(NamedTuple):
     factor: float = 1.0
 
 
-#: Summary metrics (the columns of a sweep's frame, the keys of ``Run.summary``), as shown.
+#: Summary metrics (the columns of a sweep's frame, the keys of ``Run.summary``), as shown; the
+#: table the command's sweep report reads too (the extension's ``QUANTITIES``).
 METRICS: dict[str, Quantity] = {
-    "t_detect": Quantity("detection time", "ms", 1e3),
-    "t_brake": Quantity("brake start", "ms", 1e3),
-    "peak_robot_force": Quantity("peak robot force", "N"),
-    "t_peak_robot_force": Quantity("time of peak robot force", "ms", 1e3),
-    "robot_impulse": Quantity("robot impulse", "N s"),
-    "peak_contact_force": Quantity("peak contact force", "N"),
-    "object_impacts": Quantity("tool-object impacts", "-"),
-    "forward_stop_impacts": Quantity("forward end-stop impacts", "-"),
-    "back_stop_impacts": Quantity("back end-stop impacts", "-"),
-    "object_final_velocity": Quantity("object final velocity", "m/s"),
-    "object_final_momentum": Quantity("object final momentum", "kg m/s"),
-    "object_travel": Quantity("object travel", "m"),
-    "max_stroke": Quantity("max stroke", "mm", 1e3),
-    "back_stop_hit": Quantity("back stop hit", "-"),
-    "max_gas_pressure": Quantity("max gas pressure", "Pa"),
-    "energy_residual": Quantity("energy ledger residual", "-"),
-    "stats_steps": Quantity("solver steps", "-"),
-    "stats_rejected": Quantity("rejected steps", "-"),
-    "stats_rhs_evals": Quantity("right-hand-side evaluations", "-"),
-    "stats_events": Quantity("events", "-"),
-    "stats_stiff": Quantity("stiffness flagged", "-"),
-    "stats_jacobians": Quantity("Jacobians", "-"),
-    "stats_lu_decompositions": Quantity("LU factorizations", "-"),
-    "stats_method_switches": Quantity("method switches", "-"),
+    q["key"]: Quantity(q["name"], q["unit"], q["factor"]) for q in QUANTITIES if q["kind"] == "metric"
 }
 
 #: Scene keys shown in other words or units than ``cushion.keys()`` gives; every other key is
 #: shown by its name in its SI unit from ``cushion.keys()``.
 AXES: dict[str, Quantity] = {
-    "module": Quantity("module", ""),
-    "robot.dead_time": Quantity("dead time DT", "ms", 1e3),
-    "robot.approach_speed": Quantity("approach speed v_max", "m/s"),
-    "hydraulic.gas_pressure": Quantity("gas pressure p10", "Pa"),
-    "hydraulic.orifice_radius": Quantity("orifice radius R_o", "mm", 1e3),
-    "hydraulic.piston_radius": Quantity("piston radius R_p", "mm", 1e3),
-    "object.mass": Quantity("object mass m_p", "kg"),
-    "tool.mass": Quantity("tool mass m_t", "kg"),
-    "stops.stroke": Quantity("stroke L", "mm", 1e3),
+    q["key"]: Quantity(q["name"], q["unit"], q["factor"]) for q in QUANTITIES if q["kind"] == "axis"
 }
 
 

@@ -2,6 +2,7 @@
 //! pressure and orifice radius, hydraulic runs (see `report.rs`).
 
 use super::*;
+use crate::quantities;
 
 /// A perceptually ordered colour map (viridis, 5 stops, linear in between), `u` in [0, 1].
 fn viridis(u: f64) -> RGBColor {
@@ -35,13 +36,14 @@ pub(super) fn heatmap(path: &Path, d: &Data) -> Draw<std::io::Error> {
     // Cell edges in plot coordinates: log10(pressure) and radius in mm.
     let gx = cell_edges(&d.gas.centres, true);
     let oy = cell_edges(&d.orifice.centres, false);
-    for (area, which, label) in [
-        (&left, 0usize, "max |peak robot force| [N]"),
-        (&right, 1usize, "max |object final velocity| [m/s]"),
+    for (area, which, metric) in [
+        (&left, 0usize, "peak_robot_force"),
+        (&right, 1usize, "object_final_velocity"),
     ] {
+        let label = format!("max {}", quantities::label(metric, true));
         let map = Map::of(d, which);
         let (plot, bar) = area.split_horizontally(550);
-        let mut chart = map_axes(&plot, label, &gx, &oy)?;
+        let mut chart = map_axes(&plot, &label, &gx, &oy)?;
         draw_cells(&mut chart, &map, &gx, &oy)?;
         if map.empty {
             continue;
@@ -127,8 +129,11 @@ fn map_axes<'a, 'b>(
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("gas pressure p10 [Pa] (log)")
-        .y_desc("orifice radius [mm]")
+        .x_desc(format!(
+            "{} (log)",
+            quantities::label("hydraulic.gas_pressure", false)
+        ))
+        .y_desc(quantities::label("hydraulic.orifice_radius", false))
         .x_label_formatter(&|v| {
             let p = 10f64.powf(*v);
             if p >= 1e3 {

@@ -2,12 +2,14 @@
 //! one colour per module, median and range per dead-time group (see `report.rs`).
 
 use super::*;
+use crate::quantities::label;
 
 /// One of the two charts side by side.
 struct Panel {
     /// 0: the object's final speed, 1: |F_r|.
     which: usize,
-    ylabel: &'static str,
+    /// The summary metric, shown by its size.
+    metric: &'static str,
     caption: &'static str,
     /// Digits of the y labels.
     ydigits: usize,
@@ -16,13 +18,13 @@ struct Panel {
 const PANELS: [Panel; 2] = [
     Panel {
         which: 0,
-        ylabel: "|object final velocity| [m/s]",
+        metric: "object_final_velocity",
         caption: "Object final speed",
         ydigits: 2,
     },
     Panel {
         which: 1,
-        ylabel: "|peak robot force| [N]",
+        metric: "peak_robot_force",
         caption: "Peak robot force",
         ydigits: 0,
     },
@@ -129,8 +131,8 @@ fn panel_axes<'a, 'b>(
     let ydigits = panel.ydigits;
     chart
         .configure_mesh()
-        .x_desc("dead time [ms]")
-        .y_desc(panel.ylabel)
+        .x_desc(label("robot.dead_time", false))
+        .y_desc(label(panel.metric, true))
         .x_label_formatter(&|v| format!("{v:.0}"))
         .y_label_formatter(&|v| format!("{v:.ydigits$}"))
         .label_style(("sans-serif", 15))

@@ -1,7 +1,9 @@
-//! Figure 3's layout (`cushion_sweep::figure::FIGURE3`) as Python data, so that
-//! `cushion.plot.run` draws what the command's SVG draws.
+//! What the command's charts decide, as Python data for `cushion.plot`: figure 3's layout
+//! (`cushion_sweep::figure::FIGURE3`), so that `cushion.plot.run` draws what the command's SVG
+//! draws, and how each quantity is named (`cushion_sweep::quantities`).
 
 use cushion_sweep::figure::{FIGURE3, FIGURE3_MARKS};
+use cushion_sweep::quantities::{Quantity, AXES, METRICS};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
@@ -45,6 +47,27 @@ pub fn marks(py: Python<'_>) -> PyResult<Bound<'_, PyTuple>> {
             d.set_item("field", m.field)?;
             d.set_item("label", m.label)?;
             d.set_item("color", m.color)?;
+            Ok(d)
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    PyTuple::new(py, out)
+}
+
+/// `QUANTITIES`: how the charts show each summary metric and scene key, as dicts of key, kind
+/// (`"metric"` or `"axis"`), name, unit and factor from SI.
+pub fn quantities(py: Python<'_>) -> PyResult<Bound<'_, PyTuple>> {
+    let kinds = METRICS
+        .iter()
+        .map(|q| ("metric", q))
+        .chain(AXES.iter().map(|q| ("axis", q)));
+    let out = kinds
+        .map(|(kind, q): (&str, &Quantity)| {
+            let d = PyDict::new(py);
+            d.set_item("key", q.key)?;
+            d.set_item("kind", kind)?;
+            d.set_item("name", q.name)?;
+            d.set_item("unit", q.unit)?;
+            d.set_item("factor", q.factor)?;
             Ok(d)
         })
         .collect::<PyResult<Vec<_>>>()?;
