@@ -249,6 +249,9 @@ pub struct Model {
     step_regime: Regime,
     pub(crate) robot: RobotProfile,
     pub(crate) pending_brake: Option<f64>,
+    /// The last time stop was a kink of the robot's profile (`Model::time_stop`): the early
+    /// end looks there whether anything is left to change.
+    pub(crate) time_stop_was_kink: bool,
     events: [u8; MAX_EVENTS],
     n_events: usize,
     /// The kinds of `events`, as flags: the event functions are evaluated by visiting them in
@@ -428,6 +431,7 @@ impl Model {
             step_regime: regime,
             robot,
             pending_brake: None,
+            time_stop_was_kink: false,
             events,
             n_events,
             event_set,

@@ -83,7 +83,8 @@ fn run<const N: usize>(
     t_end: f64,
 ) -> Outcome {
     let y0 = State::<N>::from_column_slice(y0);
-    let sol = cushion_ode::solve(system, t0, y0, t_end, opts);
+    let (model, mut watchers) = system.split();
+    let sol = cushion_ode::solve_observed(model, &mut watchers, t0, y0, t_end, opts);
     Outcome {
         status: sol.status,
         message: sol.message,

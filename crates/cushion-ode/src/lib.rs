@@ -39,6 +39,7 @@ pub mod jacobian;
 pub mod kinks;
 mod lu;
 mod norm;
+pub mod observer;
 pub mod options;
 mod record;
 mod restart_steps;
@@ -54,9 +55,10 @@ pub mod tableau;
 pub mod test_models;
 
 pub use dense::DenseOutput;
+pub use observer::Observer;
 pub use options::{Method, Output, SolverOptions, StiffnessAction, Tolerance};
 pub use solution::{EventRecord, Solution, Stats, Status};
-pub use solve::solve;
+pub use solve::{solve, solve_observed};
 pub use system::{Control, Direction, EventAction, OdeSystem, Step, MAX_EVENTS};
 
 /// The state vector: `N` numbers on the stack.

@@ -8,6 +8,7 @@ use crate::dop853::Dop853;
 use crate::dopri5::Dopri5;
 use crate::events::EventScan;
 use crate::norm::Weights;
+use crate::observer::Observer;
 use crate::options::{Method, SolverOptions};
 use crate::record::Recorder;
 use crate::rodas::Rodas;
@@ -34,7 +35,20 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     t_end: f64,
     opts: &SolverOptions,
 ) -> Solution<N> {
-    let problem = (sys, t0, y0, t_end, opts);
+    solve_observed(sys, &mut (), t0, y0, t_end, opts)
+}
+
+/// [`solve`] with an observer beside the problem (`observer.rs`): it sees every accepted step,
+/// the events and time stops the problem handled, and every change of method.
+pub fn solve_observed<S: OdeSystem<N>, O: Observer<S, N>, const N: usize>(
+    sys: &mut S,
+    observer: &mut O,
+    t0: f64,
+    y0: State<N>,
+    t_end: f64,
+    opts: &SolverOptions,
+) -> Solution<N> {
+    let problem = (sys, observer, t0, y0, t_end, opts);
     match opts.method {
         // The hot path: DOPRI5 with constant coefficients (same numbers as its tableau).
         Method::Dp5 => run(problem, &mut Dopri5::<N>::new()),
@@ -46,12 +60,16 @@ pub fn solve<S: OdeSystem<N>, const N: usize>(
     }
 }
 
-/// [`solve`] with the method's stepper.
-fn run<S: OdeSystem<N>, M: Stepper<N>, const N: usize>(
-    (sys, t0, y0, t_end, opts): (&mut S, f64, State<N>, f64, &SolverOptions),
+/// The problem, its observer, the start, the end and the settings of one solve.
+type Problem<'a, S, O, const N: usize> =
+    (&'a mut S, &'a mut O, f64, State<N>, f64, &'a SolverOptions);
+
+/// [`solve_observed`] with the method's stepper.
+fn run<S: OdeSystem<N>, O: Observer<S, N>, M: Stepper<N>, const N: usize>(
+    (sys, observer, t0, y0, t_end, opts): Problem<'_, S, O, N>,
     stepper: &mut M,
 ) -> Solution<N> {
-    let mut run = Integration::new(sys, t0, y0, t_end, opts);
+    let mut run = Integration::new(sys, observer, t0, y0, t_end, opts);
     let (status, message) = run.integrate(stepper);
     stepper.add_counts(&mut run.stats);
     Solution {
@@ -103,8 +121,9 @@ struct Scanned<'a, const N: usize> {
     action: EventAction,
 }
 
-struct Integration<'a, S, const N: usize> {
+struct Integration<'a, S, O, const N: usize> {
     sys: &'a mut S,
+    observer: &'a mut O,
     opts: &'a SolverOptions,
     t_end: f64,
     t: f64,
@@ -119,11 +138,19 @@ struct Integration<'a, S, const N: usize> {
     plan: StepPlan,
 }
 
-impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
-    fn new(sys: &'a mut S, t0: f64, y0: State<N>, t_end: f64, opts: &'a SolverOptions) -> Self {
+impl<'a, S: OdeSystem<N>, O: Observer<S, N>, const N: usize> Integration<'a, S, O, N> {
+    fn new(
+        sys: &'a mut S,
+        observer: &'a mut O,
+        t0: f64,
+        y0: State<N>,
+        t_end: f64,
+        opts: &'a SolverOptions,
+    ) -> Self {
         let n_events = sys.event_count();
         Integration {
             sys,
+            observer,
             opts,
             t_end,
             t: t0,
@@ -201,6 +228,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             // Events inside (t, t1]. On a dense output that is not stable, any crossing asks
             // for the step again, once, short enough for it to be stable (`step_guard.rs`).
             let unstable_at = guard.unstable_at(adaptive, h_lambda, dense_stable);
+            let events_before = self.stats.events;
             let (t_cut, y_cut, action) = self.events.scan(
                 &mut *self.sys,
                 &dense,
@@ -211,6 +239,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 guard.redoes_kinks(stepping.lands_on_kinks),
                 unstable_at.is_some(),
             );
+            if self.stats.events != events_before {
+                self.observer.after_events(&*self.sys);
+            }
             if let Some(t_cross) = self.events.take_redo() {
                 self.take_back(since_restart, h);
                 h = guard.retake(&stability, t, h, t_cross, unstable_at);
@@ -294,7 +325,9 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
             dense,
             dense_stable,
         };
+        self.observer.on_step(&*self.sys, &step_seen);
         self.sys.on_step(&step_seen, ctl);
+        self.observer.after_step(&*self.sys, &step_seen, ctl);
         if stepper.lands_on_kinks() && !cut {
             self.plan.after_step(&*self.sys, dense, (t, t_new), &y_new);
         }
@@ -305,6 +338,7 @@ impl<'a, S: OdeSystem<N>, const N: usize> Integration<'a, S, N> {
                 self.stats.stiff_since = Some(switch.since);
             }
             self.sys.on_switch(t_new, &y_new, switch.to);
+            self.observer.after_switch(&*self.sys, switch.to);
             *controller = stepper.controller(self.opts);
             self.plan.forget_restart_steps();
             h_new = h_new.min(switch.h_max);

@@ -159,7 +159,7 @@ impl<const N: usize> OdeSystem<N> for Model {
     }
 
     fn on_time_stop(&mut self, t: f64, y: &mut State<N>, ctl: &mut Control) -> EventAction {
-        self.time_stop(t, y.as_slice(), ctl);
+        self.time_stop_was_kink = self.time_stop(t, y.as_slice(), ctl);
         EventAction::Continue
     }
 

@@ -3,6 +3,7 @@
 
 use super::{End, Integration, SinceRestart};
 use crate::controller::{retry_after_discontinuity, Controller};
+use crate::observer::Observer;
 use crate::options::StiffnessAction;
 use crate::solution::Status;
 use crate::step_guard::Stability;
@@ -31,7 +32,7 @@ pub(super) enum Tried {
     End(Status, String),
 }
 
-impl<S: OdeSystem<N>, const N: usize> Integration<'_, S, N> {
+impl<S: OdeSystem<N>, O: Observer<S, N>, const N: usize> Integration<'_, S, O, N> {
     /// Hairer's estimate of `h |lambda|` for the accepted attempt of size `h`, for the
     /// stiffness test and for whether its dense output is stable (DOP853's is not near its
     /// boundary); not asked for where neither needs it.

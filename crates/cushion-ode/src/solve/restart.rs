@@ -4,12 +4,13 @@
 use super::{End, Integration, SinceRestart};
 use crate::controller::{initial_step, Controller};
 use crate::kinks::MAX_KINKS;
+use crate::observer::Observer;
 use crate::solution::Status;
 use crate::stepper::Stepper;
 use crate::system::{Control, EventAction, OdeSystem};
 use crate::State;
 
-impl<S: OdeSystem<N>, const N: usize> Integration<'_, S, N> {
+impl<S: OdeSystem<N>, O: Observer<S, N>, const N: usize> Integration<'_, S, O, N> {
     /// The run's start: the settings checked, `f`, the output and the event and kink
     /// functions at `(t0, y0)`. The run's end if it ends there.
     pub(super) fn start<M: Stepper<N>>(&mut self, stepper: &M) -> Option<End> {
@@ -96,7 +97,9 @@ impl<S: OdeSystem<N>, const N: usize> Integration<'_, S, N> {
     ) -> Result<(), End> {
         self.plan.pass_stop();
         self.stats.time_stops += 1;
+        self.observer.before_time_stop(&*self.sys);
         let action = self.sys.on_time_stop(t, &mut y, ctl);
+        self.observer.after_time_stop(&*self.sys, t, &y, ctl);
         self.y = y;
         self.plan.add_stops(t, ctl);
         if action == EventAction::Stop || ctl.stop_requested {

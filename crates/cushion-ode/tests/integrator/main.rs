@@ -8,6 +8,7 @@ mod event_bounds;
 mod events;
 mod jacobian;
 mod kinks;
+mod observer;
 mod order;
 mod rodas_events;
 mod rodas_order;
