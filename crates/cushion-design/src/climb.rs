@@ -186,7 +186,7 @@ mod tests {
         for (c, rules) in [(&mut without, &RULES), (&mut with, &probing)] {
             while !c.done {
                 c.poll(&[true, true]);
-                c.decide(&peak, rules);
+                c.decide(peak, rules);
             }
         }
         assert_eq!(
