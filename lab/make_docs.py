@@ -16,15 +16,15 @@ copied by hand. It writes:
 - docs/performance.md, `sensitivity-speed`: `sensitivity_speed.py --tables` from
   lab/results/sensitivity_speed.json;
 - docs/performance.md, `steel-ensemble`: `steel_ensemble.py --tables` from
-  lab/results/steel_ensemble.csv.
+  lab/results/steel_ensemble.csv;
+- docs/stability.md's generated part and docs/figures/stability-*.svg: `stability_map.py
+  --tables` from lab/results/stability_map.json.
 
-The last four are the studies' own `--tables` modes, run with .venv/bin/python when it exists
-(else this interpreter).
-Tables that come from runs without a committed result file (docs/stability.md's generated part,
-written by `python -m lab.stability_map`) are not touched. Exits with status 1 if a block's
-markers or a study's table could not be written. `--skip NAME ...` leaves blocks alone
+The last five are the studies' own `--tables` modes, run with .venv/bin/python when it exists
+(else this interpreter). Exits with status 1 if a block's markers or a study's table could not
+be written. `--skip NAME ...` leaves blocks alone
 (`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`): a study whose results are being made.
+`steel-ensemble`, `stability-map`): a study whose results are being made.
 """
 
 import argparse
@@ -91,6 +91,7 @@ STUDIES = {
     "design-vs-brute": "design_vs_brute.py",
     "sensitivity-speed": "sensitivity_speed.py",
     "steel-ensemble": "steel_ensemble.py",
+    "stability-map": "stability_map.py",
 }
 
 
