@@ -16,6 +16,12 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// The paper's hydraulic scene at a dead time of 70 ms, the base of the tests' sweeps and
+/// questions.
+pub fn paper_scene() -> PathBuf {
+    root().join("sweeps/scenes/paper-hydraulic-dt70.toml")
+}
+
 /// Run `cushion ARGS` to its end.
 pub fn cushion(args: &[&str]) -> Output {
     Command::new(BIN).args(args).output().expect("cushion runs")

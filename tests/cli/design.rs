@@ -12,7 +12,7 @@ use std::process::{Command, Output};
 use arrow_array::{Array, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
 use serde_json::Value as Json;
 
-use crate::common::{cushion, ok, read_batches, read_json, root, s, BIN};
+use crate::common::{cushion, ok, paper_scene, read_batches, read_json, root, s, BIN};
 
 const GAS: &str = "hydraulic.gas_pressure";
 const ORIFICE: &str = "hydraulic.orifice_radius";
@@ -20,10 +20,6 @@ const MASS: &str = "object.mass";
 const DEAD_TIME: &str = "robot.dead_time";
 const FORCE: &str = "peak_robot_force";
 const SPEED: &str = "object_final_velocity";
-
-fn scene() -> PathBuf {
-    root().join("sweeps/scenes/paper-hydraulic-dt70.toml")
-}
 
 /// The small question: the paper's design question at a design resolution of 1/8.
 fn small_question(dir: &Path) -> PathBuf {
@@ -56,7 +52,7 @@ max = 1.3
 resolution = 0.125
 verify = 5
 "#,
-        s(&scene())
+        s(&paper_scene())
     );
     let p = dir.join("small.toml");
     fs::write(&p, text).unwrap();
@@ -290,7 +286,7 @@ fn every_worst_case_is_reproduced_to_the_bit_by_simulate() {
             let metric = w["metric"].as_str().unwrap();
             let mut args = vec![
                 "simulate".to_string(),
-                s(&scene()).to_string(),
+                s(&paper_scene()).to_string(),
                 "--set".into(),
                 "solver.rtol=1e-6".into(),
             ];
@@ -413,7 +409,7 @@ linspace = [0.05, 1.0, 21]
 key = "{DEAD_TIME}"
 linspace = [0.0, 0.1, 21]
 "#,
-        s(&scene()),
+        s(&paper_scene()),
         num(gas),
         num(orifice)
     );

@@ -11,7 +11,7 @@ use std::process::Command;
 
 use arrow_array::{Array, Float64Array, RecordBatch, StringArray};
 
-use crate::common::{cushion, ok, read_batches, root, s, BIN};
+use crate::common::{cushion, ok, paper_scene, read_batches, root, s, BIN};
 
 const INPUTS: [&str; 4] = [
     "robot.dead_time",
@@ -47,7 +47,7 @@ dist = "triangular"
 mode = 0.25
 range = [0.05, 1.0]
 {extra}"#,
-        root().join("sweeps/scenes/paper-hydraulic-dt70.toml")
+        paper_scene()
     );
     let f = dir.join(format!("{name}.toml"));
     fs::write(&f, text).unwrap();

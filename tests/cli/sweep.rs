@@ -7,7 +7,7 @@ use std::process::{Command, Output};
 
 use arrow_array::{Array, Float64Array, Int64Array, StringArray};
 
-use crate::common::{cushion, ok, read_batches, read_json, root, s, BIN};
+use crate::common::{cushion, ok, paper_scene, read_batches, read_json, root, s, BIN};
 
 fn cushion_env(args: &[&str], env: (&str, &str)) -> Output {
     Command::new(BIN)
@@ -19,7 +19,7 @@ fn cushion_env(args: &[&str], env: (&str, &str)) -> Output {
 
 /// A sweep file in `dir`, with the shipped paper scene as its base.
 fn sweep_file(dir: &Path, name: &str, body: &str) -> PathBuf {
-    let scene = root().join("sweeps/scenes/paper-hydraulic-dt70.toml");
+    let scene = paper_scene();
     let text = format!(
         "name = \"{name}\"\nscene = {:?}\n{body}",
         scene.to_str().unwrap()
@@ -597,7 +597,7 @@ record = [1]
     let batches = read_batches(&out.join("summary.parquet"));
     let b = &batches[0];
     assert_eq!(b.num_rows(), 2);
-    let scene = root().join("sweeps/scenes/paper-hydraulic-dt70.toml");
+    let scene = paper_scene();
     for (row, module, dt) in [(0usize, "hydraulic", "0.01"), (1, "bistable", "0.07")] {
         let o = cushion(&[
             "simulate",
