@@ -4,6 +4,7 @@ Reads the summary of `sweeps/fidelity.toml` (81 points of the paper's four axes,
 `hydraulic.bulk_modulus` = 0, the lumped model, and four compressible liquids), pairs every
 compressible run with the lumped run at the same point and writes
 
+- lab/results/fidelity.csv    the columns it reads of every run (and of the rtol 1e-9 sweep);
 - docs/fidelity.md            the question, the commands, the tables and a rule for users;
 - docs/figures/fidelity.svg   relative difference against bulk modulus, two panels.
 
@@ -38,7 +39,9 @@ sed -e 's/"solver.rtol" = 1e-7/"solver.rtol" = 1e-9/' \
     -e "s#scene = \"scenes/#scene = \"$PWD/sweeps/scenes/#" sweeps/fidelity.toml > /tmp/fidelity-rtol9.toml
 target/release/cushion sweep /tmp/fidelity-rtol9.toml --out /tmp/fidelity-rtol9 --threads 2
 bash lab/setup_venv.sh --no-package   # .venv/ with numpy, pandas, pyarrow, matplotlib
-.venv/bin/python -m lab.fidelity /tmp/fidelity-run --reference /tmp/fidelity-rtol9"""
+.venv/bin/python -m lab.fidelity /tmp/fidelity-run --reference /tmp/fidelity-rtol9
+# the page and the chart again from lab/results/fidelity.csv alone (python3 -m lab.make_docs)
+.venv/bin/python -m lab.fidelity --tables"""
 
 ROOT = Path(__file__).resolve().parent.parent
 BETA = "hydraulic.bulk_modulus"
@@ -51,6 +54,11 @@ AXIS_LABEL = {
 }
 LIMIT = 0.01
 MEASURES = {"dv": "object final speed", "dF": "peak robot force"}
+# The summary's columns the page reads, and those compared with the rtol 1e-9 sweep.
+KEPT = ["object_final_velocity", "peak_robot_force", "t_peak_robot_force", "t_brake", "max_stroke",
+        "status", "message"]
+REFERENCED = ["object_final_velocity", "peak_robot_force"]
+RESULTS = ROOT / "lab" / "results" / "fidelity.csv"
 PANEL = {"dv": "object final speed: |v_c - v_l| / approach speed",
          "dF": "peak robot force: ||F_c| - |F_l|| / |F_l|"}
 
@@ -97,6 +105,33 @@ def load(run_dir: Path) -> tuple[pd.DataFrame, float]:
     if prov.exists():
         v_approach = json.loads(prov.read_text())["base_scene"]["robot"]["approach_speed"]
     return frame, float(v_approach)
+
+
+def save_results(run_dir: Path, reference: Path | None, path: Path) -> None:
+    """The columns the page reads, from the sweep's folder (and the rtol 1e-9 sweep's speed and
+    force as `reference_*`), to `path`: the committed result file the page is drawn from."""
+    frame, v_approach = load(run_dir)
+    out = frame[AXES + [BETA] + KEPT].copy()
+    out["approach_speed"] = v_approach
+    if reference is not None:
+        ref, _ = load(reference)
+        ref = ref[AXES + [BETA] + REFERENCED].rename(columns={c: f"reference_{c}" for c in REFERENCED})
+        out = out.merge(ref, on=AXES + [BETA], how="left", validate="one_to_one")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    out.to_csv(path, index=False, float_format="%.17g")
+
+
+def read_results(path: Path) -> tuple[pd.DataFrame, pd.DataFrame | None, float]:
+    """The runs, the rtol 1e-9 runs (None if the file has none) and the approach speed."""
+    frame = pd.read_csv(path)
+    v_approach = float(frame["approach_speed"].iloc[0])
+    ref = None
+    if f"reference_{REFERENCED[0]}" in frame:
+        ref = frame[AXES + [BETA]].copy()
+        for c in REFERENCED:
+            ref[c] = frame[f"reference_{c}"]
+    frame = frame.drop(columns=[c for c in frame if c.startswith("reference_")])
+    return frame, ref, v_approach
 
 
 def pair(frame: pd.DataFrame, v_approach: float) -> pd.DataFrame:
@@ -263,10 +298,14 @@ def main() -> int:
     ap.add_argument("run", type=Path, nargs="?", default=Path("/tmp/fidelity-run"),
                     help="output folder of `cushion sweep sweeps/fidelity.toml`")
     ap.add_argument("--reference", type=Path, help="the same sweep at rtol 1e-9 (solver error)")
+    ap.add_argument("--tables", action="store_true",
+                    help=f"draw the page from {RESULTS.relative_to(ROOT)} alone (no sweep folder)")
     ap.add_argument("--docs", type=Path, default=ROOT / "docs", help="where to write the page")
     args = ap.parse_args()
 
-    frame, v_approach = load(args.run)
+    if not args.tables:
+        save_results(args.run, args.reference, RESULTS)
+    frame, ref, v_approach = read_results(RESULTS)
     bad = frame[frame["status"] != "ok"]
     if len(bad):
         print(f"{len(bad)} runs not ok, left out with their pairs:", file=sys.stderr)
@@ -277,10 +316,7 @@ def main() -> int:
     npoints = p.groupby(AXES).ngroups
     assert not p["sign_flip"].any(), "peak_robot_force changes sign between the models somewhere"
 
-    err = None
-    if args.reference is not None:
-        ref, _ = load(args.reference)
-        err = solver_error(frame, ref, v_approach)
+    err = solver_error(frame, ref, v_approach) if ref is not None else None
     floor = 1e-8
     noise = 10 * max(err.values()) if err else 1e-5
     scale = scaling(p, floor=noise)

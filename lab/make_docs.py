@@ -18,13 +18,17 @@ copied by hand. It writes:
 - docs/performance.md, `steel-ensemble`: `steel_ensemble.py --tables` from
   lab/results/steel_ensemble.csv;
 - docs/stability.md's generated part and docs/figures/stability-*.svg: `stability_map.py
-  --tables` from lab/results/stability_map.json.
+  --tables` from lab/results/stability_map.json;
+- docs/performance.md, `run-time-parts`: `profile.py --tables` from lab/results/profile.json;
+- docs/fidelity.md and docs/figures/fidelity.svg (the whole page): `fidelity.py --tables` from
+  lab/results/fidelity.csv.
 
-The last five are the studies' own `--tables` modes, run with .venv/bin/python when it exists
+The last seven are the studies' own `--tables` modes, run with .venv/bin/python when it exists
 (else this interpreter). Exits with status 1 if a block's markers or a study's table could not
 be written. `--skip NAME ...` leaves blocks alone
 (`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`, `stability-map`): a study whose results are being made.
+`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`): a study whose results are
+being made.
 """
 
 import argparse
@@ -92,6 +96,8 @@ STUDIES = {
     "sensitivity-speed": "sensitivity_speed.py",
     "steel-ensemble": "steel_ensemble.py",
     "stability-map": "stability_map.py",
+    "run-time-parts": "profile.py",
+    "fidelity": "fidelity.py",
 }
 
 

@@ -3,24 +3,29 @@
 the right-hand side and per step.
 
     python3 -m lab.profile            # needs valgrind (Debian package), under a minute after the build
+    python3 -m lab.profile --tables   # docs/performance.md's table from lab/results/profile.json
 
 For each case (two paper scenes at the defaults, one without its energy ledger, the steel
 stops, DOP853 at rtol 1e-9) it counts instructions with valgrind's callgrind on `loop_scene`
 and splits them by the inclusive cost of the functions that own each part:
 
-- right-hand side: every call of `f` (`Observed::rhs`, with the force laws and `libm` calls it
-  makes), wherever it is called from;
-- stepping: the rest of `cushion_ode::solve` outside the parts below (stage arithmetic, error
+- right-hand side: every call of `f` (the model's `OdeSystem::rhs`, with the force laws and
+  `libm` calls it makes), wherever it is called from;
+- stepping: the rest of `cushion_ode::solve_observed` outside the parts below (stage arithmetic, error
   norm, controller, dense-output coefficients, the loop's copies and checks);
 - events: `EventScan::scan` (chord bounds, sign tests, location, handlers);
-- observers: `on_step` (the peak sampler, the early end, the ringing tail's checks);
+- observers: the model's observer (`observe::Watchers`): its `on_step` (the peak finder) and its
+  check for the early end after each step (the ringing tail's checks);
 - after the run: the summary and the ringing tail's closed form and ledger quadrature.
 
 The shares are of instructions, not time; the wall time per run (`loop_scene`, natively) turns
 them into ns (one timing each: the VM's noise of 10-20 % applies to the µs, not to the shares).
-Steps and evaluations come from `cushion simulate --json`.
+Steps and evaluations come from `cushion simulate --json`. The cases' figures go to
+lab/results/profile.json; docs/performance.md's `run-time-parts` block is drawn from that file
+(here, with `--tables`, and by `python3 -m lab.make_docs`).
 """
 
+import argparse
 import json
 import os
 import re
@@ -32,8 +37,11 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"))
 LOOP = os.path.join(TARGET, "release", "loop_scene")
 CLI = os.path.join(TARGET, "release", "cushion")
+RESULTS = os.path.join(ROOT, "lab", "results", "profile.json")
+BLOCK = "run-time-parts"
 DT70 = "sweeps/scenes/paper-hydraulic-dt70.toml"
 CASES = [
+    # (label, ...): the first two are the same scene with and without the ledger (see `table`).
     # (label, scene, settings, runs under valgrind, runs timed)
     ("paper-hydraulic-dt70, dp5 rtol 1e-6", DT70, [], 100, 4000),
     ("paper-hydraulic-dt70, dp5 rtol 1e-6, ledger off", DT70, ["energy.ledger=false"], 100, 4000),
@@ -42,12 +50,15 @@ CASES = [
     ("paper-hydraulic-dt70, dop853 rtol 1e-9", DT70,
      ["solver.method=dop853", "solver.rtol=1e-9", "solver.atol=1e-12"], 20, 800),
 ]
+# Each part: the functions that own it (one match each; their inclusive costs are summed, so
+# none may call another of its list).
 OWNERS = {
-    "rhs": r"<cushion_model::observe::Observed as cushion_ode::system::OdeSystem<_>>::rhs$",
-    "solve": r"^cushion_ode::solve::solve$",
-    "events": r"^cushion_ode::events::EventScan<_>::scan$",
-    "observers": r"<cushion_model::observe::Observed as cushion_ode::system::OdeSystem<_>>::on_step$",
-    "run": r"^cushion_model::simulate::simulate_valid$",
+    "rhs": [r"OdeSystem<_> for cushion_model::model::Model>::rhs$"],
+    "solve": [r"^cushion_ode::solve::solve_observed$"],
+    "events": [r"^cushion_ode::events::EventScan<_>::scan$"],
+    "observers": [r"^<cushion_model::observe::Watchers as cushion_ode::observer::Observer<.*>>::on_step$",
+                  r"^cushion_model::observe::Watchers::ends_early$"],
+    "run": [r"^cushion_model::simulate::simulate_valid$"],
 }
 LINE = re.compile(r"^\s*([\d,]+) \([ \d.]+%\)\s+(\S.*?):(.+?) \[")
 
@@ -65,10 +76,13 @@ def inclusive(out_file):
 
 
 def owner(costs, key):
-    hits = [v for k, v in costs.items() if re.search(OWNERS[key], k)]
-    if len(hits) != 1:
-        sys.exit(f"profile.py: {len(hits)} functions match {OWNERS[key]!r}; the build inlined or renamed it")
-    return hits[0]
+    total = 0
+    for pattern in OWNERS[key]:
+        hits = [v for k, v in costs.items() if re.search(pattern, k)]
+        if len(hits) != 1:
+            sys.exit(f"profile.py: {len(hits)} functions match {pattern!r}; the build inlined or renamed it")
+        total += hits[0]
+    return total
 
 
 def case(label, scene, sets, runs, timed):
@@ -90,25 +104,56 @@ def case(label, scene, sets, runs, timed):
                 steps=stats["steps"], rejected=stats["rejected"], parts={k: v / run for k, v in parts.items()})
 
 
-def main():
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
-                   cwd=ROOT, check=True)
-    subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-    rows = [case(*c) for c in CASES]
+def table(rows):
+    """The block's table and the figures read from it."""
     names = list(rows[0]["parts"])
-    print("| case | µs/run | instructions/run | evaluations | steps (rejected) | ns/evaluation | ns/accepted step | "
-          + " | ".join(names) + " | outside f |")
-    print("|---" * (8 + len(names)) + "|")
+    out = ["| case | µs/run | instructions/run | evaluations | steps (rejected) | ns/evaluation | "
+           "ns/accepted step | " + " | ".join(names) + " | outside f |",
+           "|---" * (8 + len(names)) + "|"]
     for r in rows:
         p = r["parts"]
         shares = " | ".join(f"{100 * p[k]:.0f} %" for k in names)
-        print(f"| {r['label']} | {r['us']:.0f} | {r['instructions']:,.0f} | {r['evals']:,} | "
-              f"{r['steps']:,} ({r['rejected']:,}) | {1000 * r['us'] / r['evals']:.0f} | "
-              f"{1000 * r['us'] / r['steps']:.0f} | {shares} | "
-              f"{100 * (1 - p['right-hand side']):.0f} % |")
-    print("\nns per evaluation of f alone (its share of the wall time):")
-    for r in rows:
-        print(f"  {r['label']}: {1000 * r['us'] * r['parts']['right-hand side'] / r['evals']:.0f} ns")
+        out.append(f"| {r['label']} | {r['us']:.0f} | {r['instructions']:,.0f} | {r['evals']:,} | "
+                   f"{r['steps']:,} ({r['rejected']:,}) | {1000 * r['us'] / r['evals']:.0f} | "
+                   f"{1000 * r['us'] / r['steps']:.0f} | {shares} | "
+                   f"{100 * (1 - p['right-hand side']):.0f} % |")
+    f_alone = [1000 * r["us"] * r["parts"]["right-hand side"] / r["evals"] for r in rows]
+    whole = [1000 * r["us"] / r["evals"] for r in rows]
+    h = rows[0]
+    per_step = {k: h["instructions"] * v / h["steps"] for k, v in h["parts"].items()}
+    out += ["", f"`f` alone costs {min(f_alone):.0f}-{max(f_alone):.0f} ns per evaluation (its share "
+            f"of the wall time), the whole run {min(whole):.0f}-{max(whole):.0f} ns. On the first "
+            f"case a step costs about {h['instructions'] / h['steps']:,.0f} instructions: `f` "
+            f"{per_step['right-hand side']:,.0f} ({h['evals'] / h['steps']:.1f} evaluations), the "
+            f"stepping {per_step['stepping']:,.0f}, the event scan {per_step['events']:,.0f}, the "
+            f"observers {per_step['observers']:,.0f}; after the run, "
+            f"{100 * h['parts']['after the run']:.0f} % of the run's instructions. Without the "
+            f"energy ledger (its two states and its tail quadrature) the run takes "
+            f"{100 * (1 - rows[1]['instructions'] / h['instructions']):.0f} % fewer instructions."]
+    return out
+
+
+def write_block(rows):
+    from lab.make_docs import PERFORMANCE, replace_block
+    return replace_block(PERFORMANCE, BLOCK, "\n".join(table(rows)), "lab/results/profile.json")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' table from the results")
+    args = ap.parse_args()
+    if not args.tables:
+        subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
+                       cwd=ROOT, check=True)
+        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+        rows = [case(*c) for c in CASES]
+        with open(RESULTS, "w") as f:
+            json.dump({"cases": rows}, f, indent=1)
+            f.write("\n")
+    with open(RESULTS) as f:
+        rows = json.load(f)["cases"]
+    print("\n".join(table(rows)))
+    sys.exit(0 if write_block(rows) else 1)
 
 
 if __name__ == "__main__":
