@@ -16,16 +16,21 @@
 //!    (default 5, ends included; evenly spaced in the logarithm on a log scale) times every
 //!    value of every list axis.
 //! 2. **Starts.** For each target, the grid points no neighbour of which along a range is worse
-//!    (the grid's local worst cases), worst first; the `starts` worst of them (default 3).
+//!    (the grid's local worst cases), worst first; the `starts` worst of them (default 3). Where
+//!    the grid has fewer local worst cases, its worst other points take the starts left.
 //! 3. **Climbs.** From each start, a compass search in the normalised box (each range mapped
 //!    onto `[0, 1]`): poll the neighbours at `step` along every range (the first step is half the
-//!    grid spacing, so the first poll lands between grid points), move to the worst neighbour if
-//!    it is worse than the centre, else halve the step. A climb stops when the gain left near its
-//!    centre, estimated from the stencil (`|b(c+h) - b(c-h)| / 2` summed over the ranges, which
-//!    bounds the gain of a smooth peak and equals that of a kink `|x - a|`), is within
-//!    `tolerance` (relative, default 1e-3) of the centre's value, or the step falls under
-//!    `min_step`, or after `max_polls` stencils. List axes stay at the start's value: their
-//!    values are unordered and the grid has them all.
+//!    grid spacing, so the first poll lands between grid points; a start that is not a local
+//!    worst case polls its first stencil at half the step too), move to the worst neighbour if
+//!    it is worse than the centre, else halve the step. A climb would stop when the gain left
+//!    near its centre, estimated from the stencil (`|b(c+h) - b(c-h)| / 2` summed over the
+//!    ranges, which bounds the gain of a smooth peak and equals that of a kink `|x - a|`), is
+//!    within `tolerance` (relative, default 1e-3) of the centre's value, or the step falls under
+//!    `min_step`; it then polls once the faces of the box through its centre along every range,
+//!    and goes on from the worst with its first step if that is as bad as the centre to within
+//!    `tolerance` (a plateau that ends at a face, with a ridge rising towards it). It stops at
+//!    the next such point, or after `max_polls` stencils. List axes stay at the start's value:
+//!    their values are unordered and the grid has them all.
 //! 4. **The answer.** Every run updates every target: a target's worst case is the worst run
 //!    made at that design point, for any target's climb, and its witness the `for_all` point of
 //!    that run. The value is the run's own number, so running the witness again gives it to the
@@ -40,10 +45,12 @@
 //! **When it can miss the worst case.** The worst value found is always a real run, so it never
 //! lies above the true worst case; it can lie below it when:
 //! - a peak is narrower than the coarse grid's spacing and no start's climb walks into it: no
-//!   grid point near it is a local worst case of the grid (a rising slope behind it hides it),
-//!   or better local candidates take all `starts`. A 5-point grid spaces ranges by a quarter;
-//! - a climb stops early: a narrow ridge oblique to the axes, which the compass stencil sees
-//!   only at small steps, or a peak that sits symmetrically between a centre's two neighbours;
+//!   grid point near it is a local worst case of the grid or among the worst points that take
+//!   the starts left (a rising slope behind it hides it), or better local candidates take all
+//!   `starts`. A 5-point grid spaces ranges by a quarter;
+//! - a climb stops early: a narrow ridge oblique to the axes that does not end on a face of the
+//!   box, which the compass stencil sees only at small steps, or a peak that sits
+//!   symmetrically between a centre's two neighbours;
 //! - a peak lies within half a step of the edge of the box from a centre on the edge (a centre
 //!   on the edge counts no gain across it, which is what finds worst cases on the edge);
 //! - a list axis value that no start takes (its values only meet the grid and the starts).

@@ -133,20 +133,28 @@ impl PointSearch {
 
     /// The climbs' starts: for each target, its `starts` worst grid points among those no
     /// range neighbour of which is worse (the grid's local worst cases: a climb from elsewhere
-    /// would mostly end on the same one), worst first, ties in grid order.
+    /// would mostly end on the same one), worst first, ties in grid order; where the grid has
+    /// fewer local worst cases, its worst other points, whose climbs poll their first stencil
+    /// at half the step too (see `climb`).
     fn starts(&self, s: &Shared, grid: &Grid) -> Vec<Climb> {
         let step = 0.5 / (s.settings.grid.max(2) - 1) as f64;
         let run_of: Vec<usize> = grid.points().iter().map(|p| self.seen[&key(p)]).collect();
         let mut climbs = Vec::new();
         for target in 0..s.targets.len() {
-            let b = |k: usize| self.badness(s, target, run_of[k]);
-            let mut local: Vec<usize> = (0..grid.len())
-                .filter(|&k| grid.neighbours(k).iter().all(|&n| b(n) <= b(k)))
+            let b: Vec<f64> = run_of.iter().map(|&r| self.badness(s, target, r)).collect();
+            let local: Vec<bool> = (0..grid.len())
+                .map(|k| grid.neighbours(k).iter().all(|&n| b[n] <= b[k]))
                 .collect();
-            // A stable sort keeps grid order among ties.
-            local.sort_by(|&x, &y| b(y).total_cmp(&b(x)));
-            for &k in local.iter().take(s.settings.starts) {
-                climbs.push(Climb::new(target, grid.point(k), b(k), step));
+            let mut order: Vec<usize> = (0..grid.len()).collect();
+            // A stable sort keeps grid order among ties: local worst cases first, worst first.
+            order.sort_by(|&x, &y| local[y].cmp(&local[x]).then(b[y].total_cmp(&b[x])));
+            for &k in order.iter().take(s.settings.starts) {
+                let start = if local[k] {
+                    Climb::new
+                } else {
+                    Climb::from_slope
+                };
+                climbs.push(start(target, grid.point(k), b[k], step));
             }
         }
         climbs

@@ -22,7 +22,8 @@ const MAX_GRID: usize = 1_000_000;
 pub struct SearchSettings {
     /// Points per range in the coarse grid (every value of a list axis is on it). Default 5.
     pub grid: usize,
-    /// Climbs per target, from the worst local candidates of the grid. Default 3.
+    /// Climbs per target, from the worst local candidates of the grid (then from its worst
+    /// other points). Default 3.
     pub starts: usize,
     /// How close to the true worst case the climbs must come, relative. Default 1e-3.
     pub tolerance: f64,

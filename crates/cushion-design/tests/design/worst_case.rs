@@ -216,14 +216,26 @@ fn a_failed_run_is_every_metric_s_worst_case() {
 
 #[test]
 fn a_peak_narrower_than_the_grid_behind_a_slope_is_missed() {
-    // The documented blind spot: a spike of width 0.01 at u = 0.37 on a rising slope. No grid
-    // point near it is a local worst case of the grid, so no climb starts near it; the search
-    // reports the end of the slope (1), not the spike (5.37).
+    // The documented blind spot: a spike of width 0.01 at u = 0.13 on a rising slope. No grid
+    // point near it is a local worst case of the grid, and the grid's next worst points, which
+    // take the two starts left (0.75 and 0.5), lie too far from it: no climb comes near it, and
+    // the search reports the end of the slope (1), not the spike (5.13).
     let for_all = Axes::new("for_all", vec![Axis::range("u", 0.0, 1.0)]).unwrap();
-    let f = |p: &[f64]| vec![p[0] + 5.0 * (-(p[0] - 0.37).powi(2) / (2.0 * 0.01f64.powi(2))).exp()];
+    let f = |p: &[f64]| vec![p[0] + 5.0 * (-(p[0] - 0.13).powi(2) / (2.0 * 0.01f64.powi(2))).exp()];
     let w = worst_of(for_all, vec![target(0, Direction::Max)], &f);
     assert_eq!(w.worst[0].value, 1.0);
     assert_eq!(w.worst[0].witness, vec![1.0]);
+}
+
+#[test]
+fn a_spike_beside_a_start_on_the_slope_is_found() {
+    // The spike of width 0.01 at u = 0.37 on the same slope: the grid point 0.5, the third
+    // worst, takes a start left over by the single local worst case (1); its first stencil
+    // lands on the spike's flank (0.375), and the climb goes up the spike.
+    let for_all = Axes::new("for_all", vec![Axis::range("u", 0.0, 1.0)]).unwrap();
+    let f = |p: &[f64]| vec![p[0] + 5.0 * (-(p[0] - 0.37).powi(2) / (2.0 * 0.01f64.powi(2))).exp()];
+    let w = worst_of(for_all, vec![target(0, Direction::Max)], &f);
+    assert!(5.37 - w.worst[0].value < 1e-3 * 5.37, "{:?}", w.worst[0]);
 }
 
 /// A family of design points: the peak moves with the design value d.
