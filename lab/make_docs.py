@@ -21,14 +21,19 @@ copied by hand. It writes:
   --tables` from lab/results/stability_map.json;
 - docs/performance.md, `run-time-parts`: `profile.py --tables` from lab/results/profile.json;
 - docs/fidelity.md and docs/figures/fidelity.svg (the whole page): `fidelity.py --tables` from
-  lab/results/fidelity.csv.
+  lab/results/fidelity.csv;
+- docs/accuracy.md, `scene-tolerances-errors`, and docs/performance.md,
+  `scene-tolerances-cost`: `scene_tolerances.py --tables` from
+  lab/results/scene_tolerances.json;
+- docs/performance.md, `ringing-tail`: `ringing_tail.py --tables` from
+  lab/results/ringing_tail.json.
 
-The last seven are the studies' own `--tables` modes, run with .venv/bin/python when it exists
+The last nine are the studies' own `--tables` modes, run with .venv/bin/python when it exists
 (else this interpreter). Exits with status 1 if a block's markers or a study's table could not
 be written. `--skip NAME ...` leaves blocks alone
 (`work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`): a study whose results are
-being made.
+`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`): a study
+whose results are being made.
 """
 
 import argparse
@@ -98,6 +103,8 @@ STUDIES = {
     "stability-map": "stability_map.py",
     "run-time-parts": "profile.py",
     "fidelity": "fidelity.py",
+    "scene-tolerances": "scene_tolerances.py",
+    "ringing-tail": "ringing_tail.py",
 }
 
 

@@ -2,7 +2,7 @@
 //! (the object's final speed, the peak robot force, the robot impulse, the detection time) stay
 //! within a small multiple of `rtol` of the same scene at rtol 1e-12, at every tolerance from
 //! 1e-4 to 1e-8, fall by at least a factor of 100 from rtol 1e-4 to 1e-8, and the impact counts
-//! never change. `bash lab/scene_tolerances.sh` prints the same errors for rtol 1e-3 to 1e-10.
+//! never change. `python3 -m lab.scene_tolerances` records the same errors for rtol 1e-3 to 1e-10.
 
 use cushion_model::{simulate, RunOptions, RunStatus, Scene, Summary};
 
@@ -68,7 +68,7 @@ fn converges(name: &str) {
         );
         let e = errors(&scene, &s, &reference);
         for (k, err) in e.iter().enumerate() {
-            // the errors are about 10 rtol at most (`bash lab/scene_tolerances.sh` prints
+            // the errors are about 10 rtol at most (`python3 -m lab.scene_tolerances` records
             // them): 30 rtol leaves a margin, yet fails an error that stops following rtol
             assert!(
                 *err <= 30.0 * rtol,

@@ -1,8 +1,8 @@
-//! One row of the cost-against-accuracy table of a scene (`lab/scene_tolerances.sh`):
+//! One row of the cost-against-accuracy study of a scene (`python -m lab.scene_tolerances`):
 //! `tolerance_row SCENE.toml RTOL` runs the scene at `solver.rtol = RTOL`,
 //! `solver.atol = RTOL / 1000` (the paper scenes' ratio) and at rtol 1e-12 as the reference, and
 //! prints the steps, right-hand-side evaluations, the best wall time per run, and the errors of
-//! the summary values a designer reads, as a Markdown row.
+//! the summary values a designer reads, as one JSON object (absent values are null).
 use cushion_model::{simulate, RunOptions, Scene, Summary};
 
 fn at_rtol(scene: &Scene, rtol: f64) -> Scene {
@@ -44,33 +44,32 @@ fn main() {
     let (this, reference) = (at_rtol(&scene, rtol), at_rtol(&scene, 1e-12));
     let (s, r) = (run(&this), run(&reference));
     let rel = |a: f64, b: f64| (a - b).abs() / b.abs().max(f64::MIN_POSITIVE);
+    // An optional value's error: null where neither run has it, "differs" where one has.
     let abs_opt = |a: Option<f64>, b: Option<f64>| match (a, b) {
-        (Some(a), Some(b)) => format!("{:.1e}", (a - b).abs()),
-        (None, None) => "-".into(),
-        _ => "differs".into(),
+        (Some(a), Some(b)) => serde_json::json!((a - b).abs()),
+        (None, None) => serde_json::Value::Null,
+        _ => serde_json::json!("differs"),
     };
     let counts = |x: &Summary| {
-        (
+        [
             x.object_impacts,
             x.forward_stop_impacts,
             x.back_stop_impacts,
-        )
+        ]
     };
-    println!(
-        "| {rtol:.0e} | {} | {} | {:.1} | {} | {:.1e} | {:.1e} | {} | {:.1e} | {} | {} |",
-        s.stats.steps,
-        s.stats.rhs_evals,
-        best_micros(&this),
-        abs_opt(s.t_detect, r.t_detect),
-        rel(s.peak_robot_force, r.peak_robot_force),
-        (s.robot_impulse - r.robot_impulse).abs(),
-        abs_opt(s.object_final_velocity, r.object_final_velocity),
-        (s.max_stroke - r.max_stroke).abs(),
-        s.energy_residual.map_or("-".into(), |e| format!("{e:.1e}")),
-        if counts(&s) == counts(&r) {
-            "same"
-        } else {
-            "differ"
-        },
-    );
+    let row = serde_json::json!({
+        "rtol": rtol,
+        "steps": s.stats.steps,
+        "rhs_evals": s.stats.rhs_evals,
+        "us_per_run": best_micros(&this),
+        "t_detect": abs_opt(s.t_detect, r.t_detect),
+        "peak_robot_force_rel": rel(s.peak_robot_force, r.peak_robot_force),
+        "robot_impulse": (s.robot_impulse - r.robot_impulse).abs(),
+        "object_final_velocity": abs_opt(s.object_final_velocity, r.object_final_velocity),
+        "max_stroke": (s.max_stroke - r.max_stroke).abs(),
+        "energy_residual": s.energy_residual,
+        "impacts": counts(&s),
+        "reference_impacts": counts(&r),
+    });
+    println!("{row}");
 }
