@@ -34,6 +34,12 @@ copied by hand. It writes:
 - docs/performance.md, `design-space-sweep`: `sweep_bench.py --tables` from
   lab/results/sweep_bench.json.
 
+- docs/performance.md, `design-phases`: `design_phases.py --tables` from
+  lab/results/design_phases.json;
+- docs/performance.md, `python-overhead` and `python-sweep`: `python_overhead.py --tables`
+  from lab/results/python_overhead.json;
+- docs/accuracy.md, `design-accuracy`: `design_accuracy.py --tables` from
+  lab/results/design_accuracy.json;
 - docs/performance.md, `in-short`: the page's summary, from lab/results/paper_scenes.json,
   work_precision.json, sweep_bench.json and profile.json.
 
@@ -41,7 +47,7 @@ The studies' own blocks are the studies' own `--tables` modes, run with .venv/bi
 (else this interpreter). Exits with status 1 if a block's markers or a study's table could not
 be written. `--skip NAME ...` leaves blocks alone
 (`in-short`, `work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`): a study
+`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`, `design-phases`, `python-package`, `design-accuracy`): a study
 whose results are being made.
 """
 
@@ -155,6 +161,9 @@ STUDIES = {
     "paper-scenes": "paper_scenes.py",
     "options-cost": "options_cost.py",
     "design-space-sweep": "sweep_bench.py",
+    "design-phases": "design_phases.py",
+    "python-package": "python_overhead.py",
+    "design-accuracy": "design_accuracy.py",
 }
 
 

@@ -9,12 +9,18 @@
 2. Sweep throughput of `cushion.sweep` against `cushion sweep` on sweeps/design-space.toml
    (16,384 runs), in memory and with `out`, alternated, best of ROUNDS.
 
-    .venv/bin/python -m lab.python_overhead [ROUNDS]      # after bash scripts/test.sh or
-                                                           # maturin develop --release
+    .venv/bin/python -m lab.python_overhead [--rounds N]  # with the release wheel installed
+                                                           # (bash lab/setup_venv.sh)
+    .venv/bin/python -m lab.python_overhead --tables       # docs/performance.md's blocks
+
+Writes lab/results/python_overhead.json; the blocks `python-overhead` and `python-sweep` of
+docs/performance.md are drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
 import statistics
 import subprocess
@@ -23,11 +29,10 @@ import tempfile
 import time
 from pathlib import Path
 
-import cushion
-
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
-ROUNDS = int(sys.argv[1]) if len(sys.argv) > 1 else 7
+RESULTS = ROOT / "lab" / "results" / "python_overhead.json"
+ROUNDS = 7
 TINY = {"t_end": 1e-6}
 
 
@@ -51,25 +56,26 @@ def best_us(call, n: int = 20_000) -> float:
     return best
 
 
-def overhead() -> None:
+def overhead() -> dict:
+    import cushion
+
     rust = min(rust_us() for _ in range(ROUNDS))
     full = {**cushion.load_scene(ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"), **TINY}
     scene_file = ROOT / "sweeps/scenes/paper-hydraulic-dt70.toml"
     prepared = cushion.Scene(scene_file, set=TINY)
     forms = {
-        "set={a few keys}": lambda: cushion.simulate(set=TINY, trajectory=False),
-        "a dict of every key": lambda: cushion.simulate(full, trajectory=False),
-        "a scene file": lambda: cushion.simulate(scene_file, set=TINY, trajectory=False),
-        "a cushion.Scene": lambda: cushion.simulate(prepared, trajectory=False),
+        "`set={...}` with a few keys (the common case)": lambda: cushion.simulate(set=TINY, trajectory=False),
+        f"a dict of every key ({len(full)}, `cushion.load_scene(...)`)": lambda: cushion.simulate(full, trajectory=False),
+        "a scene file path (read and parsed on every call)":
+            lambda: cushion.simulate(scene_file, set=TINY, trajectory=False),
+        "a `cushion.Scene` made once from the file": lambda: cushion.simulate(prepared, trajectory=False),
     }
-    print(f"fixed cost per call (t_end = 1 µs, one step): Rust alone {rust:.1f} µs, best of {ROUNDS}")
-    print(f"{'scene given as':22} {'python µs':>10} {'overhead µs':>12}")
-    for name, call in forms.items():
-        us = best_us(call)
-        print(f"{name:22} {us:10.1f} {us - rust:12.1f}")
+    return {"rust_us": rust, "forms": {name: best_us(call) for name, call in forms.items()}}
 
 
-def sweep_throughput() -> None:
+def sweep_throughput() -> dict:
+    import cushion
+
     design = ROOT / "sweeps/design-space.toml"
     cli = TARGET / "release" / "cushion"
     times: dict[str, list[float]] = {"cli": [], "python": [], "python out=": []}
@@ -84,14 +90,51 @@ def sweep_throughput() -> None:
             t = time.perf_counter()
             cushion.sweep(design, progress=False, out=f"{tmp}/py{k}")
             times["python out="].append(time.perf_counter() - t)
-    n = len(frame)
-    print(f"\nsweeps/design-space.toml, {n} runs, every core; best / median of {len(times['cli'])}")
-    for what, ts in times.items():
-        print(f"{what:12} {min(ts):6.3f} s  {n / min(ts):8.0f} runs/s   median {statistics.median(ts):.3f} s")
+    return {"runs": len(frame), "seconds": {k: sorted(v) for k, v in times.items()}}
+
+
+def tables(study: dict) -> tuple[list[str], list[str]]:
+    rust = study["overhead"]["rust_us"]
+    first = ["| scene given as | Python µs per call | Rust alone µs | overhead µs |", "|---|---|---|---|"]
+    for name, us in study["overhead"]["forms"].items():
+        first.append(f"| {name} | {us:.1f} | {rust:.1f} | {us - rust:.1f} |")
+    first += ["", f"Best of {study['rounds']} rounds."]
+    sweep = study["sweep"]
+    label = {"cli": "`cushion sweep ... --out DIR` (the command)", "python": "`cushion.sweep(path)` (in memory)",
+             "python out=": "`cushion.sweep(path, out=DIR)` (every file the command writes)"}
+    second = ["| how | seconds | runs/s |", "|---|---|---|"]
+    for k, ts in sweep["seconds"].items():
+        second.append(f"| {label[k]} | {ts[0]:.3f} | {sweep['runs'] / ts[0]:,.0f} |")
+    second += ["", f"Best of {len(sweep['seconds']['cli'])} rounds, alternating."]
+    return first, second
+
+
+def write_blocks(study: dict) -> bool:
+    from lab.make_docs import PERFORMANCE, replace_block
+    first, second = tables(study)
+    source = "lab/results/python_overhead.json"
+    ok = replace_block(PERFORMANCE, "python-overhead", "\n".join(first), source)
+    return replace_block(PERFORMANCE, "python-sweep", "\n".join(second), source) and ok
+
+
+def main() -> None:
+    global ROUNDS
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--rounds", type=int, default=ROUNDS)
+    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' blocks from the results")
+    args = ap.parse_args()
+    ROUNDS = args.rounds
+    if not args.tables:
+        subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
+                       cwd=ROOT, check=True)
+        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+        study = {"rounds": ROUNDS, "overhead": overhead(), "sweep": sweep_throughput()}
+        RESULTS.write_text(json.dumps(study, indent=1) + "\n")
+    study = json.loads(RESULTS.read_text())
+    for t in tables(study):
+        print("\n".join(t))
+    sys.exit(0 if write_blocks(study) else 1)
 
 
 if __name__ == "__main__":
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"], cwd=ROOT, check=True)
-    subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-    overhead()
-    sweep_throughput()
+    main()

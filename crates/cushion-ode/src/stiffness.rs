@@ -46,7 +46,7 @@ pub fn dense_stable(h_lambda: Option<f64>, boundary: f64) -> bool {
 /// 0.9 the peaks of the design space under DOP853 at rtol 1e-6 were still 2.3e-4 off
 /// (relative) in 8 of 16,384 runs, below 0.6 none by more than 3.5e-5, for 1.3 % more
 /// evaluations than DOP853 took before any step was integrated again (`cushion-model`,
-/// `peaks/top_step.rs`; `lab/design_accuracy.sh solver.method=dop853`).
+/// `peaks/top_step.rs`; `python3 -m lab.design_accuracy solver.method=dop853`).
 pub const DENSE_MARGIN: f64 = 0.6;
 
 /// The test's running state.

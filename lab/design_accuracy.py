@@ -1,0 +1,131 @@
+"""Accuracy of the design-space sweep at its tolerance (rtol 1e-6) against the same 16,384 runs
+at rtol 1e-10: per summary field, the median, 99th percentile and largest error (relative;
+absolute in N s and m/s for the impulse and the object's speed), the run with the largest, and
+how many runs are off by more than 1e-4; the statuses and the mean evaluations per run. A
+benchmark, not a test.
+
+    python3 -m lab.design_accuracy                  # two sweeps, about 10 s after the release build
+    python3 -m lab.design_accuracy KEY=VALUE ...    # other settings of the runs (the reference
+                                                    # stays at rtol 1e-10); prints, writes nothing
+    python3 -m lab.design_accuracy --tables         # docs/accuracy.md's block from the results
+
+Writes lab/results/design_accuracy.json (at the sweep's own settings); the block
+`design-accuracy` of docs/accuracy.md is drawn from it (here and by `python3 -m lab.make_docs`).
+"""
+
+import argparse
+import csv
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CLI = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "cushion")
+RESULTS = os.path.join(ROOT, "lab", "results", "design_accuracy.json")
+ACCURACY = os.path.join(ROOT, "docs", "accuracy.md")
+SWEEP = os.path.join(ROOT, "sweeps", "design-space.toml")
+FIELDS = {  # field: (label, absolute error?)
+    "peak_robot_force": ("peak robot force (rel)", False),
+    "peak_contact_force": ("peak contact force (rel)", False),
+    "max_stroke": ("max stroke (rel)", False),
+    "max_gas_pressure": ("max gas pressure (rel)", False),
+    "robot_impulse": ("robot impulse (N s)", True),
+    "object_final_velocity": ("object final speed (m/s)", True),
+}
+
+
+def sweep_file(tmp, name, sets):
+    text = open(SWEEP).read().replace('scene = "scenes/', f'scene = "{ROOT}/sweeps/scenes/', 1)
+    for key, value in sets.items():
+        text = re.sub(rf'^"{re.escape(key)}" = .*\n', "", text, flags=re.M)
+        text = re.sub(r"^\[set\]\n", lambda m: m.group(0) + f'"{key}" = {value}\n', text, count=1, flags=re.M)
+    path = os.path.join(tmp, f"{name}.toml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def summary(tmp, name, sets):
+    out = os.path.join(tmp, name)
+    subprocess.run([CLI, "sweep", sweep_file(tmp, name, sets), "--out", out, "--quiet"], check=True)
+    with open(os.path.join(out, "summary.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def toml_value(v):
+    return v if re.fullmatch(r"[-+0-9.eE]+|true|false", v) else json.dumps(v)
+
+
+def measure(settings):
+    with tempfile.TemporaryDirectory() as tmp:
+        ref = summary(tmp, "reference", {"solver.rtol": "1e-10"})
+        run = summary(tmp, "run", {k: toml_value(v) for k, v in settings.items()})
+    fields = {}
+    for k, (_, absolute) in FIELDS.items():
+        errs = []
+        for r, x in zip(ref, run):
+            if r[k] in ("", "null"):
+                continue
+            a, b = float(r[k]), float(x[k])
+            errs.append((abs(a - b) / (1.0 if absolute else max(abs(a), 1e-300)), int(x["run"]), b))
+        errs.sort()
+        n = len(errs)
+        fields[k] = {"median": errs[n // 2][0], "p99": errs[int(0.99 * n)][0], "largest": errs[-1][0],
+                     "largest_run": errs[-1][1], "largest_value": errs[-1][2],
+                     "above_1e-4": sum(e > 1e-4 for e, _, _ in errs)}
+    statuses = {}
+    for x in run:
+        statuses[x["status"]] = statuses.get(x["status"], 0) + 1
+    return {"settings": settings, "runs": len(run), "statuses": statuses,
+            "rhs_evals_mean": sum(int(x["stats_rhs_evals"]) for x in run) / len(run), "fields": fields}
+
+
+def sci(x):
+    """2.6e-7 rather than 2.6e-07."""
+    m, e = f"{x:.1e}".split("e")
+    return f"{m}e{int(e)}"
+
+
+def table(study):
+    ok = study["statuses"].get("ok", 0)
+    out = [f"{study['runs']:,} runs, {ok:,} of them `ok`; {study['rhs_evals_mean']:,.0f} evaluations a run on average.", "",
+           "| field | median | 99th percentile | largest (run, its value) | runs above 1e-4 |",
+           "|---|---|---|---|---|"]
+    for k, (label, _) in FIELDS.items():
+        f = study["fields"][k]
+        out.append(f"| {label} | {sci(f['median'])} | {sci(f['p99'])} | {sci(f['largest'])} (run {f['largest_run']}, "
+                   f"{f['largest_value']:.3g}) | {f['above_1e-4']} |")
+    return out
+
+
+def write_block(study):
+    from lab.make_docs import replace_block
+    return replace_block(ACCURACY, "design-accuracy", "\n".join(table(study)), "lab/results/design_accuracy.json")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("settings", nargs="*", help="KEY=VALUE settings of the runs")
+    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
+    args = ap.parse_args()
+    settings = dict(s.split("=", 1) for s in args.settings)
+    if not args.tables:
+        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+        study = measure(settings)
+        if settings:
+            print("\n".join(table(study)))
+            return
+        with open(RESULTS, "w") as f:
+            json.dump(study, f, indent=1)
+            f.write("\n")
+    with open(RESULTS) as f:
+        study = json.load(f)
+    print("\n".join(table(study)))
+    sys.exit(0 if write_block(study) else 1)
+
+
+if __name__ == "__main__":
+    main()
