@@ -76,11 +76,13 @@ def measure(settings):
         fields[k] = {"median": errs[n // 2][0], "p99": errs[int(0.99 * n)][0], "largest": errs[-1][0],
                      "largest_run": errs[-1][1], "largest_value": errs[-1][2],
                      "above_1e-4": sum(e > 1e-4 for e, _, _ in errs)}
+    residuals = sorted(float(x["energy_residual"]) for x in run if x["energy_residual"] not in ("", "null"))
     statuses = {}
     for x in run:
         statuses[x["status"]] = statuses.get(x["status"], 0) + 1
     return {"settings": settings, "runs": len(run), "statuses": statuses,
-            "rhs_evals_mean": sum(int(x["stats_rhs_evals"]) for x in run) / len(run), "fields": fields}
+            "rhs_evals_mean": sum(int(x["stats_rhs_evals"]) for x in run) / len(run), "fields": fields,
+            "energy_residual": {"median": residuals[len(residuals) // 2], "largest": residuals[-1]}}
 
 
 def sci(x):

@@ -91,6 +91,8 @@ def design_space():
                                            / off["peak_robot_force"].abs()).max()),
         "robot_impulse_max_diff": float(impulse.max()),
         "robot_impulse_median_diff": float(impulse.median()),
+        "energy_residual_median": [float(on["energy_residual"].median()), float(off["energy_residual"].median())],
+        "energy_residual_largest": [float(on["energy_residual"].max()), float(off["energy_residual"].max())],
     }
 
 
