@@ -9,8 +9,10 @@ benchmark, not a test.
                                                     # stays at rtol 1e-10); prints, writes nothing
     python3 -m lab.design_accuracy --tables         # docs/accuracy.md's block from the results
 
-Writes lab/results/design_accuracy.json (at the sweep's own settings); the block
-`design-accuracy` of docs/accuracy.md is drawn from it (here and by `python3 -m lab.make_docs`).
+Writes lab/results/design_accuracy.json (at the sweep's own settings, and the variants of
+`VARIANTS`: DOP853 and DOPRI5 at several tolerances); the blocks `design-accuracy` and
+`design-accuracy-methods` of docs/accuracy.md are drawn from it (here and by
+`python3 -m lab.make_docs`).
 """
 
 import argparse
@@ -26,6 +28,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CLI = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "cushion")
 RESULTS = os.path.join(ROOT, "lab", "results", "design_accuracy.json")
 ACCURACY = os.path.join(ROOT, "docs", "accuracy.md")
+# The methods compared on the design space (docs/accuracy.md, section 7).
+VARIANTS = [{"solver.method": m, "solver.rtol": r}
+            for m, r in [("dop853", "1e-6"), ("dop853", "1e-7"), ("dop853", "1e-8"), ("dp5", "1e-6"), ("dp5", "1e-8")]]
 SWEEP = os.path.join(ROOT, "sweeps", "design-space.toml")
 FIELDS = {  # field: (label, absolute error?)
     "peak_robot_force": ("peak robot force (rel)", False),
@@ -59,10 +64,8 @@ def toml_value(v):
     return v if re.fullmatch(r"[-+0-9.eE]+|true|false", v) else json.dumps(v)
 
 
-def measure(settings):
-    with tempfile.TemporaryDirectory() as tmp:
-        ref = summary(tmp, "reference", {"solver.rtol": "1e-10"})
-        run = summary(tmp, "run", {k: toml_value(v) for k, v in settings.items()})
+def errors(ref, run):
+    """Per field: median, 99th percentile, largest error (with its run and value), runs above 1e-4."""
     fields = {}
     for k, (_, absolute) in FIELDS.items():
         errs = []
@@ -76,13 +79,30 @@ def measure(settings):
         fields[k] = {"median": errs[n // 2][0], "p99": errs[int(0.99 * n)][0], "largest": errs[-1][0],
                      "largest_run": errs[-1][1], "largest_value": errs[-1][2],
                      "above_1e-4": sum(e > 1e-4 for e, _, _ in errs)}
+    return fields
+
+
+def describe(run):
     residuals = sorted(float(x["energy_residual"]) for x in run if x["energy_residual"] not in ("", "null"))
     statuses = {}
     for x in run:
         statuses[x["status"]] = statuses.get(x["status"], 0) + 1
-    return {"settings": settings, "runs": len(run), "statuses": statuses,
-            "rhs_evals_mean": sum(int(x["stats_rhs_evals"]) for x in run) / len(run), "fields": fields,
+    return {"runs": len(run), "statuses": statuses,
+            "rhs_evals_mean": sum(int(x["stats_rhs_evals"]) for x in run) / len(run),
             "energy_residual": {"median": residuals[len(residuals) // 2], "largest": residuals[-1]}}
+
+
+def measure(settings, variants=()):
+    """The sweep at `settings` against rtol 1e-10, and each of `variants` (settings) against the
+    same reference."""
+    with tempfile.TemporaryDirectory() as tmp:
+        ref = summary(tmp, "reference", {"solver.rtol": "1e-10"})
+        run = summary(tmp, "run", {k: toml_value(v) for k, v in settings.items()})
+        study = {"settings": settings, **describe(run), "fields": errors(ref, run), "variants": []}
+        for i, v in enumerate(variants):
+            other = summary(tmp, f"variant-{i}", {k: toml_value(x) for k, x in v.items()})
+            study["variants"].append({"settings": v, **describe(other), "fields": errors(ref, other)})
+    return study
 
 
 def sci(x):
@@ -103,9 +123,23 @@ def table(study):
     return out
 
 
+def methods_table(study):
+    out = ["| design space | peak robot force (rel): 99th pct / largest | max stroke (rel): 99th pct / largest | "
+           "object final speed (m/s): 99th pct / largest | evaluations a run |", "|---|---|---|---|---|"]
+    for v in study["variants"]:
+        f = v["fields"]
+        cell = lambda k: f"{sci(f[k]['p99'])} / {sci(f[k]['largest'])}"
+        out.append(f"| `{v['settings']['solver.method']}`, rtol {v['settings']['solver.rtol']} | "
+                   f"{cell('peak_robot_force')} | {cell('max_stroke')} | {cell('object_final_velocity')} | "
+                   f"{v['rhs_evals_mean']:,.0f} |")
+    return out
+
+
 def write_block(study):
     from lab.make_docs import replace_block
-    return replace_block(ACCURACY, "design-accuracy", "\n".join(table(study)), "lab/results/design_accuracy.json")
+    source = "lab/results/design_accuracy.json"
+    ok = replace_block(ACCURACY, "design-accuracy", "\n".join(table(study)), source)
+    return replace_block(ACCURACY, "design-accuracy-methods", "\n".join(methods_table(study)), source) and ok
 
 
 def main():
@@ -116,7 +150,7 @@ def main():
     settings = dict(s.split("=", 1) for s in args.settings)
     if not args.tables:
         subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-        study = measure(settings)
+        study = measure(settings, () if settings else VARIANTS)
         if settings:
             print("\n".join(table(study)))
             return
