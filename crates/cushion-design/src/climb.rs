@@ -17,18 +17,19 @@
 //! the edge (a ridge along the edge of the box).
 //!
 //! Two more rules, each for a way a compass search stops short:
-//! - **A start that is not a local worst case of the grid** (a start beyond the grid's local
-//!   worst cases) polls its first stencil at `step` and at `step / 2` and moves to the worst of
-//!   them: its better neighbour one step away may lie beyond a narrow peak beside it (at a 5.5
-//!   kPa gas preload the object's final speed peaks at 0.074 kg, between the grid's 0.05 kg
-//!   and the far side of the peak, at 0.17 kg, that the first step lands on; guarded by
+//! - **A start that is not a local worst case of the grid** polls its first stencil at `step`
+//!   and at `step / 2` and moves to the worst of them: its better neighbour one step away may
+//!   lie beyond a narrow peak beside it (at a 5.5 kPa gas preload the object's final speed
+//!   peaks at 0.074 kg, between the grid's 0.05 kg and the 0.17 kg on the peak's far side where
+//!   the first step lands; guarded by
 //!   `tests::a_start_off_the_grid_peaks_polls_half_its_first_step`).
 //! - **The faces, once.** Where the climb would stop, it polls once, along every range, the two
-//!   points on the faces of the box through its centre, and goes on from the worst if it is as
-//!   bad or worse, with its first step again. The worst case of an impact often lies on a plateau that ends at a face: once the
-//!   object has left, a longer dead time changes nothing, and a ridge that rises towards that
-//!   face is too steep for the stencil to follow (the bistable module at 0.75 m/s; guarded by
-//!   `tests::a_plateau_is_followed_to_its_face`).
+//!   points on the faces of the box through its centre, and goes on from the worst, with its
+//!   first step again, if that is as bad as the centre to within the tolerance (a plateau's
+//!   values differ by the solver's noise). The worst case of an impact often lies on a plateau
+//!   that ends at a face: once the object has left, a longer dead time changes nothing, and a
+//!   ridge that rises towards that face is too steep for the stencil to follow (the bistable
+//!   module at 0.75 m/s; guarded by `tests::a_plateau_is_followed_to_its_face`).
 
 /// Normalised coordinates in the `for_all` box.
 pub(crate) type Coord = Vec<f64>;
@@ -187,8 +188,9 @@ impl Climb {
             self.phase = Phase::FacesDone;
         }
         match best {
-            // A face as bad as the centre is taken too: along a plateau the climb goes on from
-            // the face, where the ridge that rises towards it ends.
+            // A face as bad as the centre to within the tolerance is taken: along a plateau the
+            // climb goes on from the face, where the ridge that rises towards it ends. The worst
+            // case found so far is kept by the point search, whatever the centre.
             Some((b, p, _))
                 if faces
                     && b >= self.center_badness - rules.tolerance * self.center_badness.abs() =>
