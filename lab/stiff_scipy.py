@@ -1,5 +1,5 @@
 """SciPy's stiff solvers on the problems of `crates/cushion-ode/tests/integrator/rodas_stiff.rs`, with the
-same tolerances and analytic Jacobians, for comparison with `bash lab/stiff_ode.sh`:
+same tolerances and analytic Jacobians, for comparison with the engine's (`python -m lab.stiff_ode` runs both):
 evaluations of f (nfev; none spent on Jacobians), Jacobians (njev), LU factorizations (nlu),
 the mixed error at the end against the same reference, and wall time.
 
@@ -76,7 +76,8 @@ def orego_jac(t, y):
     ]
 
 
-def main():
+def rows():
+    """Radau and BDF on each problem: one dict per run."""
     vdp6, vdp6j = vdp(1e6)
     vdp3, vdp3j = vdp(1e3)
     ref_vdp3 = solve_ivp(vdp3, (0, 2), [2.0, -0.66], method="Radau", jac=vdp3j, rtol=1e-12, atol=1e-12).y[:, -1]
@@ -93,7 +94,7 @@ def main():
         ("OREGO", orego_f, orego_jac, [1.0, 2.0, 3.0], 360.0, 1e-6, [1e-8] * 3,
          [0.1000814870318523e1, 0.1228178521549917e4, 0.1320554942846706e3]),
     ]
-    print(f"{'problem':14} {'method':6} {'steps':>6} {'nfev':>7} {'njev':>6} {'nlu':>6} {'mixed err':>9} {'wall s':>8}")
+    out = []
     for name, f, jac, y0, t_end, rtol, atol, ref in problems:
         for method in ["Radau", "BDF"]:
             t = time.perf_counter()
@@ -101,8 +102,17 @@ def main():
             wall = time.perf_counter() - t
             y = sol.y[:, -1]
             err = max(abs(y[i] - ref[i]) / (atol[i] + rtol * abs(ref[i])) for i in range(len(y)))
-            steps = len(sol.t) - 1
-            print(f"{name:14} {method:6} {steps:6d} {sol.nfev:7d} {sol.njev:6d} {sol.nlu:6d} {err:9.2f} {wall:8.3f}")
+            out.append({"problem": name, "method": f"SciPy {method}", "steps": len(sol.t) - 1, "rhs_evals": int(sol.nfev),
+                        "jacobians": int(sol.njev), "lus": int(sol.nlu), "mixed_error": float(err),
+                        "wall_ms": 1e3 * wall})
+    return out
+
+
+def main():
+    print(f"{'problem':14} {'method':12} {'steps':>6} {'nfev':>7} {'njev':>6} {'nlu':>6} {'mixed err':>9} {'wall ms':>8}")
+    for r in rows():
+        print(f"{r['problem']:14} {r['method']:12} {r['steps']:6d} {r['rhs_evals']:7d} {r['jacobians']:6d} "
+              f"{r['lus']:6d} {r['mixed_error']:9.2f} {r['wall_ms']:8.1f}")
 
 
 if __name__ == "__main__":

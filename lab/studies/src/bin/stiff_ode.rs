@@ -1,6 +1,6 @@
 //! Work and wall time of the implicit method on the classic stiff problems (a benchmark, not a
-//! test): `cargo run --release -p cushion-studies --bin stiff_ode` (or `bash lab/stiff_ode.sh`,
-//! which also runs SciPy's solvers on the same problems when `.venv` has SciPy).
+//! test): `cargo run --release -p cushion-studies --bin stiff_ode` (or `python -m lab.stiff_ode`,
+//! which also runs SciPy's solvers on the same problems and records both).
 //!
 //! For each problem, Rodas4 with the system's Jacobian, Rodas4 with finite differences, and
 //! DOPRI5 (stopped after 2,000,000 steps where stiffness makes it hopeless): steps, rejected
