@@ -1,8 +1,9 @@
 //! Integrator benchmark (not a test): `cargo bench -p cushion-ode --bench step_cost`.
 //!
-//! 1. Arenstorf orbit over one period at tolerances 1e-4 .. 1e-10: steps, rejections,
-//!    right-hand-side evaluations and end error (compare with `lab/arenstorf_dopri5.py`,
-//!    Hairer's DOPRI5 through SciPy).
+//! 1. Arenstorf orbit over one period at tolerances 1e-4 .. 1e-12, under DOPRI5 and DOP853:
+//!    steps, rejections, right-hand-side evaluations and end error (compare with
+//!    `lab/arenstorf_dopri5.py`, Hairer's DOPRI5 through SciPy; `python -m lab.arenstorf`
+//!    records the table for docs/integrator.md).
 //! 2. The integrator's own cost per step, beyond the right-hand-side evaluations: total time
 //!    minus `rhs_evals` times the measured cost of one evaluation, over attempted steps.
 
@@ -11,10 +12,11 @@ use std::time::Instant;
 
 use cushion_ode::test_models::arenstorf::{initial_state, Arenstorf, PERIOD};
 use cushion_ode::test_models::exponential::Oscillator;
-use cushion_ode::{solve, OdeSystem, SolverOptions, State, StiffnessAction, Tolerance};
+use cushion_ode::{solve, Method, OdeSystem, SolverOptions, State, StiffnessAction, Tolerance};
 
 fn opts(tol: f64) -> SolverOptions {
     SolverOptions {
+        method: Method::Dp5,
         rtol: Tolerance::Scalar(tol),
         atol: Tolerance::Scalar(tol),
         stiffness: StiffnessAction::Warn,
@@ -75,32 +77,38 @@ fn overhead<S: OdeSystem<N>, const N: usize>(
 fn main() {
     println!("# Arenstorf orbit, one period, rtol = atol = tol");
     println!(
-        "{:>8} {:>8} {:>9} {:>10} {:>12} {:>10}",
-        "tol", "steps", "rejected", "rhs_evals", "end_error", "us/solve"
+        "{:>7} {:>8} {:>8} {:>9} {:>10} {:>12} {:>10}",
+        "method", "tol", "steps", "rejected", "rhs_evals", "end_error", "us/solve"
     );
-    for k in 4..=10 {
-        let tol = 10f64.powi(-k);
-        let o = opts(tol);
-        let sol = solve(&mut Arenstorf, 0.0, initial_state(), PERIOD, &o);
-        let err = (sol.y - initial_state()).amax();
-        let t = time_per_call(11, 5, || {
-            black_box(solve(
-                &mut Arenstorf,
-                0.0,
-                black_box(initial_state()),
-                PERIOD,
-                &o,
-            ));
-        });
-        println!(
-            "{:>8.0e} {:>8} {:>9} {:>10} {:>12.3e} {:>10.1}",
-            tol,
-            sol.stats.steps,
-            sol.stats.rejected,
-            sol.stats.rhs_evals,
-            err,
-            t * 1e6
-        );
+    for (name, method) in [("dp5", Method::Dp5), ("dop853", Method::Dop853)] {
+        for k in 4..=12 {
+            let tol = 10f64.powi(-k);
+            let o = SolverOptions {
+                method,
+                ..opts(tol)
+            };
+            let sol = solve(&mut Arenstorf, 0.0, initial_state(), PERIOD, &o);
+            let err = (sol.y - initial_state()).amax();
+            let t = time_per_call(11, 5, || {
+                black_box(solve(
+                    &mut Arenstorf,
+                    0.0,
+                    black_box(initial_state()),
+                    PERIOD,
+                    &o,
+                ));
+            });
+            println!(
+                "{:>7} {:>8.0e} {:>8} {:>9} {:>10} {:>12.3e} {:>10.1}",
+                name,
+                tol,
+                sol.stats.steps,
+                sol.stats.rejected,
+                sol.stats.rhs_evals,
+                err,
+                t * 1e6
+            );
+        }
     }
     println!();
     println!("# Cost per step beyond the right-hand side");
