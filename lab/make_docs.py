@@ -44,6 +44,8 @@ copied by hand. It writes:
   lab/results/options_accuracy.json;
 - docs/integrator.md, `arenstorf`: `arenstorf.py --tables` from lab/results/arenstorf.json;
 - docs/integrator.md, `stiff-ode`: `stiff_ode.py --tables` from lab/results/stiff_ode.json;
+- docs/accuracy.md, `wide-accuracy`: `wide_accuracy.py --tables` from
+  lab/results/wide_accuracy.json;
 - docs/accuracy.md, `energy-ledger`: the residuals of the paper scenes and the design space,
   from lab/results/ringing_tail.json and design_accuracy.json;
 - docs/performance.md, `in-short`: the page's summary, from lab/results/paper_scenes.json,
@@ -53,7 +55,7 @@ The studies' own blocks are the studies' own `--tables` modes, run with .venv/bi
 (else this interpreter). Exits with status 1 if a block's markers or a study's table could not
 be written. `--skip NAME ...` leaves blocks alone
 (`in-short`, `energy-ledger`, `work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`, `design-phases`, `python-package`, `design-accuracy`, `options-accuracy`, `stiff-ode`, `arenstorf`): a study
+`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`, `design-phases`, `python-package`, `design-accuracy`, `options-accuracy`, `stiff-ode`, `arenstorf`, `wide-accuracy`): a study
 whose results are being made.
 """
 
@@ -191,6 +193,7 @@ STUDIES = {
     "options-accuracy": "options_accuracy.py",
     "stiff-ode": "stiff_ode.py",
     "arenstorf": "arenstorf.py",
+    "wide-accuracy": "wide_accuracy.py",
 }
 
 
