@@ -50,6 +50,8 @@ copied by hand. It writes:
   lab/results/ringing_tail_check.json;
 - docs/accuracy.md, `wide-trajectories`: `wide_trajectories.py --tables` from
   lab/results/wide_trajectories.json;
+- docs/performance.md, `stiff-scenes` and `stiff-scenes-scipy`: `stiff_scenes.py --tables`
+  from lab/results/stiff_scenes.json;
 - docs/accuracy.md, `energy-ledger`: the residuals of the paper scenes and the design space,
   from lab/results/ringing_tail.json and design_accuracy.json;
 - docs/performance.md, `in-short`: the page's summary, from lab/results/paper_scenes.json,
@@ -59,7 +61,7 @@ The studies' own blocks are the studies' own `--tables` modes, run with .venv/bi
 (else this interpreter). Exits with status 1 if a block's markers or a study's table could not
 be written. `--skip NAME ...` leaves blocks alone
 (`in-short`, `energy-ledger`, `work-precision`, `default-method`, `design-vs-brute`, `sensitivity-speed`,
-`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`, `design-phases`, `python-package`, `design-accuracy`, `options-accuracy`, `stiff-ode`, `arenstorf`, `wide-accuracy`, `ringing-tail-check`, `wide-trajectories`): a study
+`steel-ensemble`, `stability-map`, `run-time-parts`, `fidelity`, `scene-tolerances`, `ringing-tail`, `paper-scenes`, `options-cost`, `design-space-sweep`, `design-phases`, `python-package`, `design-accuracy`, `options-accuracy`, `stiff-ode`, `arenstorf`, `wide-accuracy`, `ringing-tail-check`, `wide-trajectories`, `stiff-scenes`): a study
 whose results are being made.
 """
 
@@ -200,6 +202,7 @@ STUDIES = {
     "wide-accuracy": "wide_accuracy.py",
     "ringing-tail-check": "ringing_tail_check.py",
     "wide-trajectories": "wide_trajectories.py",
+    "stiff-scenes": "stiff_scenes.py",
 }
 
 
