@@ -43,8 +43,34 @@ fn doc_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/scene-keys.md")
 }
 
+/// A default as a TOML value a user can type, readable at a glance: floats of magnitude 1e5 and
+/// more or below 1e-3 in exponent form (`1.35e6`, `7.63e-5`), large integers with `_` between
+/// thousands (`1_000_000`); anything else as TOML writes it (strings quoted).
+fn toml_text(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Float(x) if *x != 0.0 && (x.abs() >= 1e5 || x.abs() < 1e-3) => {
+            format!("{x:e}")
+        }
+        toml::Value::Integer(n) if n.abs() >= 100_000 => {
+            let digits = n.unsigned_abs().to_string();
+            let mut out = String::new();
+            for (i, c) in digits.chars().enumerate() {
+                if i > 0 && (digits.len() - i) % 3 == 0 {
+                    out.push('_');
+                }
+                out.push(c);
+            }
+            if *n < 0 {
+                out.insert(0, '-');
+            }
+            out
+        }
+        _ => v.to_string(),
+    }
+}
+
 /// The table as the page holds it: one row per key, in the order of `Scene::keys()`, defaults
-/// as TOML values (strings quoted).
+/// as TOML values (strings quoted; see `toml_text`).
 fn table() -> String {
     let scene = Scene::default();
     let mut t = String::from(
@@ -56,7 +82,8 @@ fn table() -> String {
         description,
     } in Scene::key_info()
     {
-        let default = scene.get(key).expect("every key has a value");
+        let value = scene.get(key).expect("every key has a value");
+        let default = toml_text(&value);
         t.push_str(&format!(
             "| `{key}` | `{default}` | {unit} | {description} |\n"
         ));
@@ -161,5 +188,16 @@ fn choice_keys_name_every_allowed_value() {
                 info.description
             );
         }
+    }
+}
+
+#[test]
+fn the_page_s_defaults_read_back_as_the_code_s() {
+    let scene = Scene::default();
+    for KeyInfo { key, .. } in Scene::key_info() {
+        let value = scene.get(key).expect("every key has a value");
+        let text = toml_text(&value);
+        let read: toml::Table = toml::from_str(&format!("x = {text}")).expect("a TOML value");
+        assert_eq!(read["x"], value, "{key}: {text}");
     }
 }
