@@ -10,12 +10,13 @@ Writes lab/results/arenstorf.json; the block `arenstorf` of docs/integrator.md i
 (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
+from lab.study import rt, sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "arenstorf.json")
@@ -25,7 +26,7 @@ ROW = re.compile(r"^\s*(dp5|dop853)\s+(\S+)\s+(\d+)\s+(\d+)\s+(\d+)\s+(\S+)\s+([
 SHOWN = [1e-9, 1e-10, 1e-11, 1e-12]
 
 
-def measure():
+def measure(args=None):
     out = subprocess.run(["cargo", "bench", "-q", "-p", "cushion-ode", "--bench", "step_cost"], cwd=ROOT,
                          capture_output=True, text=True, check=True).stdout
     rows = []
@@ -40,40 +41,23 @@ def measure():
     return {"rows": rows}
 
 
-def sci(x):
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
-
-
 def table(study):
     at = {(r["method"], r["tol"]): r for r in study["rows"]}
     out = ["| tol | DOP853 error | evaluations (steps, rejected) | DOPRI5 error | evaluations |",
            "|---|---|---|---|---|"]
     for tol in SHOWN:
         d8, d5 = at[("dop853", tol)], at[("dp5", tol)]
-        out.append(f"| {sci(tol).replace('.0', '')} | {sci(d8['end_error'])} | {d8['rhs_evals']:,} ({d8['steps']}, "
+        out.append(f"| {rt(tol)} | {sci(d8['end_error'])} | {d8['rhs_evals']:,} ({d8['steps']}, "
                    f"{d8['rejected']}) | {sci(d5['end_error'])} | {d5['rhs_evals']:,} |")
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(INTEGRATOR, "arenstorf", "\n".join(table(study)), "lab/results/arenstorf.json")
+def blocks(study):
+    return [(INTEGRATOR, "arenstorf", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

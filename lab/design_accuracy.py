@@ -15,7 +15,6 @@ Writes lab/results/design_accuracy.json (at the sweep's own settings, and the va
 `python3 -m lab.make_docs`).
 """
 
-import argparse
 import csv
 import json
 import os
@@ -24,14 +23,16 @@ import subprocess
 import sys
 import tempfile
 
+from lab import study as lab
+from lab.study import sci
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CLI = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "cushion")
+CLI = lab.binary("cushion")
 RESULTS = os.path.join(ROOT, "lab", "results", "design_accuracy.json")
 ACCURACY = os.path.join(ROOT, "docs", "accuracy.md")
 # The methods compared on the design space (docs/accuracy.md, section 7).
 VARIANTS = [{"solver.method": m, "solver.rtol": r}
             for m, r in [("dop853", "1e-6"), ("dop853", "1e-7"), ("dop853", "1e-8"), ("dp5", "1e-6"), ("dp5", "1e-8")]]
-SWEEP = os.path.join(ROOT, "sweeps", "design-space.toml")
 FIELDS = {  # field: (label, absolute error?)
     "peak_robot_force": ("peak robot force (rel)", False),
     "peak_contact_force": ("peak contact force (rel)", False),
@@ -42,20 +43,9 @@ FIELDS = {  # field: (label, absolute error?)
 }
 
 
-def sweep_file(tmp, name, sets):
-    text = open(SWEEP).read().replace('scene = "scenes/', f'scene = "{ROOT}/sweeps/scenes/', 1)
-    for key, value in sets.items():
-        text = re.sub(rf'^"{re.escape(key)}" = .*\n', "", text, flags=re.M)
-        text = re.sub(r"^\[set\]\n", lambda m: m.group(0) + f'"{key}" = {value}\n', text, count=1, flags=re.M)
-    path = os.path.join(tmp, f"{name}.toml")
-    with open(path, "w") as f:
-        f.write(text)
-    return path
-
-
 def summary(tmp, name, sets):
     out = os.path.join(tmp, name)
-    subprocess.run([CLI, "sweep", sweep_file(tmp, name, sets), "--out", out, "--quiet"], check=True)
+    subprocess.run([CLI, "sweep", lab.design_space_file(tmp, name, sets), "--out", out, "--quiet"], check=True)
     with open(os.path.join(out, "summary.csv")) as f:
         return list(csv.DictReader(f))
 
@@ -92,7 +82,7 @@ def describe(run):
             "energy_residual": {"median": residuals[len(residuals) // 2], "largest": residuals[-1]}}
 
 
-def measure(settings, variants=()):
+def compare(settings, variants=()):
     """The sweep at `settings` against rtol 1e-10, and each of `variants` (settings) against the
     same reference."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -103,12 +93,6 @@ def measure(settings, variants=()):
             other = summary(tmp, f"variant-{i}", {k: toml_value(x) for k, x in v.items()})
             study["variants"].append({"settings": v, **describe(other), "fields": errors(ref, other)})
     return study
-
-
-def sci(x):
-    """2.6e-7 rather than 2.6e-07."""
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
 
 
 def table(study):
@@ -135,32 +119,25 @@ def methods_table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    source = "lab/results/design_accuracy.json"
-    ok = replace_block(ACCURACY, "design-accuracy", "\n".join(table(study)), source)
-    return replace_block(ACCURACY, "design-accuracy-methods", "\n".join(methods_table(study)), source) and ok
+def measure(args):
+    """The sweep's own settings and `VARIANTS`; with KEY=VALUE settings, those alone, printed and
+    not kept (the command ends here)."""
+    lab.release("cushion")
+    settings = dict(s.split("=", 1) for s in args.settings)
+    if settings:
+        print("\n".join(table(compare(settings))))
+        sys.exit(0)
+    return compare({}, VARIANTS)
+
+
+def blocks(study):
+    return [(ACCURACY, "design-accuracy", "\n".join(table(study))),
+            (ACCURACY, "design-accuracy-methods", "\n".join(methods_table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("settings", nargs="*", help="KEY=VALUE settings of the runs")
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    settings = dict(s.split("=", 1) for s in args.settings)
-    if not args.tables:
-        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-        study = measure(settings, () if settings else VARIANTS)
-        if settings:
-            print("\n".join(table(study)))
-            return
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks,
+             options=lambda ap: ap.add_argument("settings", nargs="*", help="KEY=VALUE settings of the runs"))
 
 
 if __name__ == "__main__":

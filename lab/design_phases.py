@@ -16,11 +16,11 @@ docs/performance.md ("The design-space sweep") is drawn from it (here and by
 `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
-import sys
 import tomllib
+
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SWEEP = os.path.join(ROOT, "sweeps/design-space.toml")
@@ -51,7 +51,8 @@ def phases(point):
     return len(t) - after, after
 
 
-def measure(sample, seed):
+def measure(args):
+    sample, seed = args.sample, args.seed
     import cushion
     import numpy as np
     import pandas as pd
@@ -86,26 +87,17 @@ def table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    return replace_block(PERFORMANCE, "design-phases", "\n".join(table(study)), "lab/results/design_phases.json")
+def blocks(study):
+    return [(PERFORMANCE, "design-phases", "\n".join(table(study)))]
+
+
+def options(ap):
+    ap.add_argument("--sample", type=int, default=400)
+    ap.add_argument("--seed", type=int, default=2)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--sample", type=int, default=400)
-    ap.add_argument("--seed", type=int, default=2)
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    a = ap.parse_args()
-    if not a.tables:
-        study = measure(a.sample, a.seed)
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__.split("\n\n")[0], RESULTS, measure, blocks, options)
 
 
 if __name__ == "__main__":

@@ -31,6 +31,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from lab.study import sci
+
 # Shown on the page as they are written here; run them from the repository root.
 REPRODUCE = r"""cargo build --release
 target/release/cushion sweep sweeps/fidelity.toml --out /tmp/fidelity-run --threads 2
@@ -71,12 +73,6 @@ def fmt_axis(key: str, value: float) -> str:
 def pct(x: float) -> str:
     """A relative difference in per cent, two significant figures."""
     return f"{100 * x:.3g} %" if x >= 1e-5 else f"{100 * x:.1e} %"
-
-
-def sci(x: float) -> str:
-    """1.2e8 rather than 1.2e+08."""
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
 
 
 def share(mask: pd.Series) -> str:

@@ -73,6 +73,7 @@ import subprocess
 import sys
 
 from lab import study_tables
+from lab.study import sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results")
@@ -155,7 +156,6 @@ def energy_ledger_block():
     """docs/accuracy.md's residuals of the paper scenes and the design space."""
     tail = load("ringing_tail.json")
     design = load("design_accuracy.json")["energy_residual"]
-    sci = lambda x: "{}e{}".format(*(lambda m, e: (m, int(e)))(*f"{x:.1e}".split("e")))
     scenes = ", ".join(f"{r['scene'].removeprefix('paper-')} {sci(r['energy_residual'][0])}" for r in tail["scenes"])
     d = tail["design_space"]
     return "\n".join([

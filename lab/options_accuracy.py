@@ -12,13 +12,14 @@ Writes lab/results/options_accuracy.json; the block `options-accuracy` of docs/a
 drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
 import csv
-import json
 import os
 import subprocess
 import sys
 import tempfile
+
+from lab import study as lab
+from lab.study import rt, sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CLI = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "cushion")
@@ -77,7 +78,7 @@ def summary(tmp, name, rtols, set_lines):
         return list(csv.DictReader(f))
 
 
-def measure():
+def measure(args=None):
     subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
     with tempfile.TemporaryDirectory() as tmp:
         run = summary(tmp, "run", "[1e-6, 1e-8, 1e-4]", "")
@@ -98,11 +99,6 @@ def measure():
     return {"runs": len(run), "rows": rows}
 
 
-def sci(x):
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
-
-
 def table(study):
     out = ["| rtol | " + " | ".join(f"{label}: median / p99 / largest (run)" for label in MEASURES.values()) + " |",
            "|---|---|---|"]
@@ -112,28 +108,16 @@ def table(study):
         for k in MEASURES:
             r = next(r for r in study["rows"] if r["rtol"] == rtol and r["measure"] == k)
             cells.append(f"{sci(r['median'])} / {sci(r['p99'])} / {sci(r['largest'])} ({r['largest_run']})")
-        out.append(f"| {sci(rtol).replace('.0', '')} | " + " | ".join(cells) + " |")
+        out.append(f"| {rt(rtol)} | " + " | ".join(cells) + " |")
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(ACCURACY, "options-accuracy", "\n".join(table(study)), "lab/results/options_accuracy.json")
+def blocks(study):
+    return [(ACCURACY, "options-accuracy", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

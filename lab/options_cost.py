@@ -9,12 +9,13 @@ Writes lab/results/options_cost.json (one row per line of the bench); the block 
 of docs/performance.md is drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "options_cost.json")
@@ -22,7 +23,7 @@ RESULTS = os.path.join(ROOT, "lab", "results", "options_cost.json")
 ROW = re.compile(r"^(\S.*?)\s+(\d+)\s+([\d.]+)\s+(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+(\S+)$")
 
 
-def measure():
+def measure(args=None):
     out = subprocess.run(["cargo", "bench", "-q", "-p", "cushion-model", "--bench", "scene"], cwd=ROOT,
                          capture_output=True, text=True, check=True).stdout
     rows = []
@@ -51,24 +52,12 @@ def table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    return replace_block(PERFORMANCE, "options-cost", "\n".join(table(study)), "lab/results/options_cost.json")
+def blocks(study):
+    return [(PERFORMANCE, "options-cost", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

@@ -20,17 +20,17 @@ Writes lab/results/paper_scenes.json; the blocks `paper-scenes` and `against-sci
 docs/performance.md are drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
 import json
 import os
-import re
 import statistics
 import subprocess
-import sys
 import time
 
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+from lab.study import rt, sci
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release")
 RESULTS = os.path.join(ROOT, "lab", "results", "paper_scenes.json")
 TOLERANCES = os.path.join(ROOT, "lab", "results", "scene_tolerances.json")
 SCENES = ["paper-hydraulic-dt70", "paper-hydraulic-dt10", "paper-bistable-dt70", "paper-bistable-dt10",
@@ -45,18 +45,11 @@ def path(scene):
 
 
 def instructions(scene):
-    def count(runs):
-        out = subprocess.run(["valgrind", "--tool=cachegrind", "--cache-sim=no", "--cachegrind-out-file=/dev/null",
-                              os.path.join(TARGET, "loop_scene"), str(runs), path(scene)],
-                             capture_output=True, text=True, check=True).stderr
-        return int(re.search(r"I\s+refs:\s+([\d,]+)", out).group(1).replace(",", ""))
-    return (count(200) - count(0)) // 200
+    return lab.instructions_per_run([path(scene)], 200)
 
 
 def simulate(scene, sets=()):
-    args = [os.path.join(TARGET, "cushion"), "simulate", path(scene), "--json"]
-    args += [a for s in sets for a in ("--set", s)]
-    return json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+    return lab.simulate(path(scene), sets)
 
 
 def wall_times():
@@ -64,7 +57,7 @@ def wall_times():
     times = {s: [] for s in SCENES}
     for _ in range(ROUNDS):
         for s in SCENES:
-            out = subprocess.run([os.path.join(TARGET, "loop_scene"), str(RUNS), path(s)],
+            out = subprocess.run([lab.binary("loop_scene"), str(RUNS), path(s)],
                                  capture_output=True, text=True, check=True).stdout
             times[s].append(float(out.split()[0]))
     return times
@@ -92,10 +85,9 @@ def scipy_runs(reference_speed):
     return rk45, methods
 
 
-def measure():
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
-                   cwd=ROOT, check=True)
-    subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+def measure(args=None):
+    lab.release("loop_scene", package="cushion-studies")
+    lab.release("cushion")
     times = wall_times()
     scenes = []
     for s in SCENES:
@@ -108,16 +100,6 @@ def measure():
     return {"rounds": ROUNDS, "runs_per_round": RUNS, "scenes": scenes,
             "reference_object_final_velocity": reference["object_final_velocity"],
             "scipy_rk45": rk45, "scipy_methods": methods}
-
-
-def rt(rtol):
-    m, x = f"{rtol:.0e}".split("e")
-    return f"{m}e{int(x)}"
-
-
-def sci(x):
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
 
 
 def scenes_block(study):
@@ -157,28 +139,15 @@ def scipy_block(study):
     return out
 
 
-def write_blocks(study):
-    from lab.make_docs import PERFORMANCE, replace_block
+def blocks(study):
     source = "lab/results/paper_scenes.json"
-    ok = replace_block(PERFORMANCE, "paper-scenes", "\n".join(scenes_block(study)), source)
-    return replace_block(PERFORMANCE, "against-scipy", "\n".join(scipy_block(study)),
-                         source + " and lab/results/scene_tolerances.json") and ok
+    return [(PERFORMANCE, "paper-scenes", "\n".join(scenes_block(study)), source),
+            (PERFORMANCE, "against-scipy", "\n".join(scipy_block(study)),
+             source + " and lab/results/scene_tolerances.json")]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' blocks from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(scenes_block(study)))
-    print("\n".join(scipy_block(study)))
-    sys.exit(0 if write_blocks(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

@@ -25,18 +25,17 @@ lab/results/profile.json; docs/performance.md's `run-time-parts` block is drawn 
 (here, with `--tables`, and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
 import tempfile
 
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"))
-LOOP = os.path.join(TARGET, "release", "loop_scene")
-CLI = os.path.join(TARGET, "release", "cushion")
+LOOP = lab.binary("loop_scene")
 RESULTS = os.path.join(ROOT, "lab", "results", "profile.json")
 BLOCK = "run-time-parts"
 DT70 = "sweeps/scenes/paper-hydraulic-dt70.toml"
@@ -98,8 +97,7 @@ def case(label, scene, sets, runs, timed):
     wall = subprocess.run([LOOP, str(timed), scene, *sets], cwd=ROOT, capture_output=True, text=True,
                           check=True).stdout
     us = float(wall.split()[0])
-    args = [CLI, "simulate", scene, "--json"] + [a for s in sets for a in ("--set", s)]
-    stats = json.loads(subprocess.run(args, cwd=ROOT, capture_output=True, text=True, check=True).stdout)["stats"]
+    stats = lab.simulate(scene, sets)["stats"]
     return dict(label=label, instructions=run / runs, us=us, evals=stats["rhs_evals"],
                 steps=stats["steps"], rejected=stats["rejected"], parts={k: v / run for k, v in parts.items()})
 
@@ -133,27 +131,18 @@ def table(rows):
     return out
 
 
-def write_block(rows):
-    from lab.make_docs import PERFORMANCE, replace_block
-    return replace_block(PERFORMANCE, BLOCK, "\n".join(table(rows)), "lab/results/profile.json")
+def measure(args=None):
+    lab.release("loop_scene", package="cushion-studies")
+    lab.release("cushion")
+    return {"cases": [case(*c) for c in CASES]}
+
+
+def blocks(study):
+    return [(PERFORMANCE, BLOCK, "\n".join(table(study["cases"])))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' table from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
-                       cwd=ROOT, check=True)
-        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-        rows = [case(*c) for c in CASES]
-        with open(RESULTS, "w") as f:
-            json.dump({"cases": rows}, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        rows = json.load(f)["cases"]
-    print("\n".join(table(rows)))
-    sys.exit(0 if write_block(rows) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

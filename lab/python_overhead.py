@@ -19,26 +19,23 @@ docs/performance.md are drawn from it (here and by `python3 -m lab.make_docs`).
 
 from __future__ import annotations
 
-import argparse
-import json
-import os
-import statistics
 import subprocess
-import sys
 import tempfile
 import time
 from pathlib import Path
 
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+
 ROOT = Path(__file__).resolve().parents[1]
-TARGET = ROOT / os.environ.get("CARGO_TARGET_DIR", "target")
-RESULTS = ROOT / "lab" / "results" / "python_overhead.json"
+RESULTS = str(ROOT / "lab" / "results" / "python_overhead.json")
 ROUNDS = 7
 TINY = {"t_end": 1e-6}
 
 
 def rust_us(n: int = 200_000) -> float:
     out = subprocess.run(
-        [str(TARGET / "release" / "loop_scene"), str(n), "t_end=1e-6"],
+        [lab.binary("loop_scene"), str(n), "t_end=1e-6"],
         capture_output=True, text=True, check=True,
     )
     return float(out.stdout.split()[0])
@@ -77,7 +74,7 @@ def sweep_throughput() -> dict:
     import cushion
 
     design = ROOT / "sweeps/design-space.toml"
-    cli = TARGET / "release" / "cushion"
+    cli = lab.binary("cushion")
     times: dict[str, list[float]] = {"cli": [], "python": [], "python out=": []}
     with tempfile.TemporaryDirectory() as tmp:
         for k in range(max(3, ROUNDS // 2)):
@@ -109,31 +106,22 @@ def tables(study: dict) -> tuple[list[str], list[str]]:
     return first, second
 
 
-def write_blocks(study: dict) -> bool:
-    from lab.make_docs import PERFORMANCE, replace_block
+def measure(args) -> dict:
+    global ROUNDS
+    ROUNDS = args.rounds
+    lab.release("loop_scene", package="cushion-studies")
+    lab.release("cushion")
+    return {"rounds": ROUNDS, "overhead": overhead(), "sweep": sweep_throughput()}
+
+
+def blocks(study: dict):
     first, second = tables(study)
-    source = "lab/results/python_overhead.json"
-    ok = replace_block(PERFORMANCE, "python-overhead", "\n".join(first), source)
-    return replace_block(PERFORMANCE, "python-sweep", "\n".join(second), source) and ok
+    return [(PERFORMANCE, "python-overhead", "\n".join(first)), (PERFORMANCE, "python-sweep", "\n".join(second))]
 
 
 def main() -> None:
-    global ROUNDS
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--rounds", type=int, default=ROUNDS)
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' blocks from the results")
-    args = ap.parse_args()
-    ROUNDS = args.rounds
-    if not args.tables:
-        subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
-                       cwd=ROOT, check=True)
-        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-        study = {"rounds": ROUNDS, "overhead": overhead(), "sweep": sweep_throughput()}
-        RESULTS.write_text(json.dumps(study, indent=1) + "\n")
-    study = json.loads(RESULTS.read_text())
-    for t in tables(study):
-        print("\n".join(t))
-    sys.exit(0 if write_blocks(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks,
+             options=lambda ap: ap.add_argument("--rounds", type=int, default=ROUNDS))
 
 
 if __name__ == "__main__":

@@ -15,17 +15,17 @@ Writes lab/results/ringing_tail.json; the block `ringing-tail` of docs/performan
 from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
-import re
 import subprocess
-import sys
 import tempfile
 import time
 
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+from lab.study import sci
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CLI = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release", "cushion")
+CLI = lab.binary("cushion")
 RESULTS = os.path.join(ROOT, "lab", "results", "ringing_tail.json")
 SCENES = ["paper-hydraulic-dt70", "paper-hydraulic-dt10", "paper-bistable-dt70", "paper-bistable-dt10",
           "paper-rigid"]
@@ -34,9 +34,7 @@ ROUNDS = 3
 
 
 def simulate(scene, sets):
-    args = [CLI, "simulate", os.path.join(ROOT, "sweeps", "scenes", f"{scene}.toml"), "--json"]
-    args += [a for s in sets for a in ("--set", s)]
-    return json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+    return lab.simulate(os.path.join(ROOT, "sweeps", "scenes", f"{scene}.toml"), sets)
 
 
 def scene_row(scene):
@@ -53,15 +51,9 @@ def scene_row(scene):
 
 
 def sweep_file(tmp, tail):
-    """sweeps/design-space.toml under DOPRI5, with the tail on or off, its scene made absolute."""
-    text = open(os.path.join(ROOT, "sweeps", "design-space.toml")).read()
-    text = text.replace('scene = "scenes/', f'scene = "{ROOT}/sweeps/scenes/', 1)
-    extra = '"solver.method" = "dp5"\n' + ("" if tail else '"solver.ringing_tail" = false\n')
-    text = re.sub(r"^\[set\]\n", lambda m: m.group(0) + extra, text, count=1, flags=re.M)
-    path = os.path.join(tmp, f"design-space-{'on' if tail else 'off'}.toml")
-    with open(path, "w") as f:
-        f.write(text)
-    return path
+    """sweeps/design-space.toml under DOPRI5, with the tail on or off."""
+    sets = {"solver.method": '"dp5"', **({} if tail else {"solver.ringing_tail": "false"})}
+    return lab.design_space_file(tmp, f"design-space-{'on' if tail else 'off'}", sets)
 
 
 def design_space():
@@ -96,12 +88,6 @@ def design_space():
     }
 
 
-def sci(x):
-    """8.2e-7 rather than 8.2e-07."""
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
-
-
 def table(study):
     out = ["| method | scene | steps on / off | rhs evaluations on / off | robot impulse moves by (rel) | "
            "energy residual on / off |", "|---|---|---|---|---|---|"]
@@ -127,25 +113,17 @@ def table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    return replace_block(PERFORMANCE, "ringing-tail", "\n".join(table(study)), "lab/results/ringing_tail.json")
+def measure(args=None):
+    lab.release("cushion")
+    return {"scenes": [scene_row(s) for s in SCENES], "design_space": design_space()}
+
+
+def blocks(study):
+    return [(PERFORMANCE, "ringing-tail", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-        study = {"scenes": [scene_row(s) for s in SCENES], "design_space": design_space()}
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

@@ -11,12 +11,13 @@ Writes lab/results/ringing_tail_check.json; the block `ringing-tail-check` of do
 is drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
+from lab.study import sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "ringing_tail_check.json")
@@ -25,7 +26,8 @@ HEAD = re.compile(r"^(\d+) scenes, ringing tail taken in (\d+); steps (\d+) -> (
 WORST = re.compile(r"^worst (\w+)\s+(\S+)\s*(.*)$")
 
 
-def measure(scenes):
+def measure(args):
+    scenes = args.scenes
     out = subprocess.run(["cargo", "run", "--release", "-q", "-p", "cushion-studies", "--bin", "ringing_tail_check",
                           "--", str(scenes)], cwd=ROOT, capture_output=True, text=True, check=True).stdout
     study = {"worst": {}}
@@ -38,13 +40,6 @@ def measure(scenes):
     if "taken" not in study or not study["worst"]:
         sys.exit("ringing_tail_check.py: the study's output was not understood:\n" + out)
     return study
-
-
-def sci(x):
-    if x == 0:
-        return "0"
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
 
 
 def block(study):
@@ -63,25 +58,13 @@ def block(study):
     ])
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(ACCURACY, "ringing-tail-check", block(study), "lab/results/ringing_tail_check.json")
+def blocks(study):
+    return [(ACCURACY, "ringing-tail-check", block(study))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--scenes", type=int, default=1000)
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure(args.scenes)
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print(block(study))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks,
+             options=lambda ap: ap.add_argument("--scenes", type=int, default=1000))
 
 
 if __name__ == "__main__":

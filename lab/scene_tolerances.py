@@ -16,17 +16,17 @@ docs/accuracy.md and `scene-tolerances-cost` of docs/performance.md are drawn fr
 by `python3 -m lab.make_docs`).
 """
 
-import argparse
 import json
 import os
-import re
 import subprocess
 import sys
 
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+from lab.study import rt
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release")
 RESULTS = os.path.join(ROOT, "lab", "results", "scene_tolerances.json")
-SOURCE = "lab/results/scene_tolerances.json"
 ACCURACY = os.path.join(ROOT, "docs", "accuracy.md")
 SCENES = {
     "hydraulic dt70": "sweeps/scenes/paper-hydraulic-dt70.toml",
@@ -45,32 +45,21 @@ def tolerances(rtol):
 
 
 def instructions(scene, rtol):
-    """Instructions per run of `loop_scene` (cachegrind), the start-up's taken off."""
-    def count(runs):
-        out = subprocess.run(["valgrind", "--tool=cachegrind", "--cache-sim=no",
-                              "--cachegrind-out-file=/dev/null", os.path.join(TARGET, "loop_scene"),
-                              str(runs), scene, *tolerances(rtol)],
-                             cwd=ROOT, capture_output=True, text=True, check=True).stderr
-        return int(re.search(r"I\s+refs:\s+([\d,]+)", out).group(1).replace(",", ""))
-    return (count(50) - count(0)) // 50
+    return lab.instructions_per_run([scene, *tolerances(rtol)], 50)
 
 
 def evaluations(scene, sets):
-    args = [os.path.join(TARGET, "cushion"), "simulate", scene, "--json"]
-    args += [a for s in sets for a in ("--set", s)]
-    done = subprocess.run(args, cwd=ROOT, capture_output=True, text=True, check=True)
-    return json.loads(done.stdout)["stats"]["rhs_evals"]
+    return lab.simulate(scene, sets)["stats"]["rhs_evals"]
 
 
-def measure():
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "tolerance_row",
-                    "--bin", "loop_scene"], cwd=ROOT, check=True)
-    subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+def measure(args=None):
+    lab.release("tolerance_row", "loop_scene", package="cushion-studies")
+    lab.release("cushion")
     scenes = {}
     for name, scene in SCENES.items():
         rows = []
         for rtol in RTOLS:
-            out = subprocess.run([os.path.join(TARGET, "tolerance_row"), scene, f"{rtol:.0e}"], cwd=ROOT,
+            out = subprocess.run([lab.binary("tolerance_row"), scene, f"{rtol:.0e}"], cwd=ROOT,
                                  capture_output=True, text=True, check=True).stdout
             row = json.loads(out)
             row["instructions_per_run"] = instructions(scene, rtol)
@@ -82,12 +71,6 @@ def measure():
              "rhs_evals_off": evaluations(hydraulic, tolerances(r) + ["solver.ringing_tail=false"])}
             for r in TAIL_RTOLS]
     return {"scenes": scenes, "ringing_tail": tail}
-
-
-def rt(rtol):
-    """1e-6 rather than 1e-06."""
-    m, x = f"{rtol:.0e}".split("e")
-    return f"{m}e{int(x)}"
 
 
 def e(x):
@@ -136,27 +119,13 @@ def cost_table(study):
     return out
 
 
-def write_blocks(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    ok = replace_block(ACCURACY, "scene-tolerances-errors", "\n".join(errors_table(study)), SOURCE)
-    return replace_block(PERFORMANCE, "scene-tolerances-cost", "\n".join(cost_table(study)), SOURCE) and ok
+def blocks(study):
+    return [(ACCURACY, "scene-tolerances-errors", "\n".join(errors_table(study))),
+            (PERFORMANCE, "scene-tolerances-cost", "\n".join(cost_table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' tables from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(errors_table(study)))
-    print()
-    print("\n".join(cost_table(study)))
-    sys.exit(0 if write_blocks(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

@@ -11,12 +11,12 @@ lab/results/stiff_ode.json; the block `stiff-ode` of docs/integrator.md is drawn
 and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "stiff_ode.json")
@@ -47,7 +47,7 @@ def engine_rows():
     return rows
 
 
-def measure():
+def measure(args=None):
     from lab import stiff_scipy
 
     return {"engine": engine_rows(), "scipy": [r for r in stiff_scipy.rows() if r["problem"] in PROBLEMS]}
@@ -79,24 +79,12 @@ def table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(INTEGRATOR, "stiff-ode", "\n".join(table(study)), "lab/results/stiff_ode.json")
+def blocks(study):
+    return [(INTEGRATOR, "stiff-ode", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

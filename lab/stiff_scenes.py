@@ -18,16 +18,15 @@ Writes lab/results/stiff_scenes.json; the blocks `stiff-scenes` and `stiff-scene
 docs/performance.md are drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
-import re
 import statistics
 import subprocess
-import sys
+
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
+from lab.study import rt
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-TARGET = os.path.join(ROOT, os.environ.get("CARGO_TARGET_DIR", "target"), "release")
 RESULTS = os.path.join(ROOT, "lab", "results", "stiff_scenes.json")
 SCENE = os.path.join(ROOT, "sweeps", "scenes", "paper-hydraulic-dt70.toml")
 VARIANTS = {
@@ -44,34 +43,23 @@ def sets(variant, method, rtol):
     return [VARIANTS[variant], f"solver.method={method}", f"solver.rtol={rtol:g}", f"solver.atol={rtol / 1000:g}"]
 
 
-def instructions(args):
-    def count(runs):
-        out = subprocess.run(["valgrind", "--tool=cachegrind", "--cache-sim=no", "--cachegrind-out-file=/dev/null",
-                              os.path.join(TARGET, "loop_scene"), str(runs), SCENE, *args],
-                             capture_output=True, text=True, check=True).stderr
-        return int(re.search(r"I\s+refs:\s+([\d,]+)", out).group(1).replace(",", ""))
-    return (count(3) - count(0)) // 3
-
-
 def engine_row(variant, method, rtol):
     args = sets(variant, method, rtol)
-    cli = [os.path.join(TARGET, "cushion"), "simulate", SCENE, "--json"] + [a for s in args for a in ("--set", s)]
-    run = json.loads(subprocess.run(cli, capture_output=True, text=True, check=True).stdout)
+    run = lab.simulate(SCENE, args)
     st = run["stats"]
-    times = [float(subprocess.run([os.path.join(TARGET, "loop_scene"), "20", SCENE, *args], capture_output=True,
+    times = [float(subprocess.run([lab.binary("loop_scene"), "20", SCENE, *args], capture_output=True,
                                   text=True, check=True).stdout.split()[0]) for _ in range(5)]
     return {"variant": variant, "method": method, "rtol": rtol, "status": run["status"],
-            "instructions_per_run": instructions(args), "us_per_run": statistics.median(times),
+            "instructions_per_run": lab.instructions_per_run([SCENE, *args], 3), "us_per_run": statistics.median(times),
             "rhs_evals": st["rhs_evals"], "jacobians": st["jacobians"], "lus": st["lu_decompositions"],
             "switches": st["method_switches"]}
 
 
-def measure():
+def measure(args=None):
     from lab import stiff_scenes_scipy as sp
 
-    subprocess.run(["cargo", "build", "--release", "-q", "-p", "cushion-studies", "--bin", "loop_scene"],
-                   cwd=ROOT, check=True)
-    subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
+    lab.release("loop_scene", package="cushion-studies")
+    lab.release("cushion")
     engine = [engine_row(v, m, r) for v in VARIANTS for m in METHODS for r in RTOLS
               if not (v.startswith("compressible") and m in ("dp5", "dop853"))]
     scipy = []
@@ -83,12 +71,6 @@ def measure():
                               "seconds": st["seconds"], "f_calls": st.get("f_calls"), "njev": st.get("njev"),
                               "nlu": st.get("nlu")})
     return {"engine": engine, "scipy": scipy}
-
-
-def rt(rtol):
-    """1e-6 rather than 1e-06."""
-    m, e = f"{rtol:.0e}".split("e")
-    return f"{m}e{int(e)}"
 
 
 def pair(rows, key, f):
@@ -130,27 +112,13 @@ def scipy_table(study):
     return out
 
 
-def write_blocks(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    ok = replace_block(PERFORMANCE, "stiff-scenes", "\n".join(engine_table(study)), "lab/results/stiff_scenes.json")
-    return replace_block(PERFORMANCE, "stiff-scenes-scipy", "\n".join(scipy_table(study)),
-                         "lab/results/stiff_scenes.json") and ok
+def blocks(study):
+    return [(PERFORMANCE, "stiff-scenes", "\n".join(engine_table(study))),
+            (PERFORMANCE, "stiff-scenes-scipy", "\n".join(scipy_table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' blocks from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure()
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1, default=lambda x: x.item())  # numpy scalars from SciPy
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(engine_table(study)))
-    print("\n".join(scipy_table(study)))
-    sys.exit(0 if write_blocks(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":

@@ -48,7 +48,6 @@ import argparse
 import math
 import multiprocessing as mp
 import os
-import sys
 import time
 import warnings
 

@@ -16,13 +16,15 @@ Writes lab/results/sweep_bench.json (or `--out`); the block `design-space-sweep`
 docs/performance.md is drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
 import json
 import os
 import re
 import subprocess
 import sys
 import tempfile
+
+from lab import study as lab
+from lab.make_docs import PERFORMANCE
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "sweep_bench.json")
@@ -82,33 +84,34 @@ def table(study):
             "", f"Best of {study['repeat']} rounds, alternating thread counts; `{study['binary']}`."]
 
 
-def write_block(study):
-    from lab.make_docs import PERFORMANCE, replace_block
-    return replace_block(PERFORMANCE, "design-space-sweep", "\n".join(table(study)), "lab/results/sweep_bench.json")
-
-
-def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--out", default=RESULTS, help="where to write the results (default lab/results/sweep_bench.json)")
-    args = ap.parse_args()
-    if not args.tables:
-        cli = os.environ.get("CUSHION_BIN")
-        if cli is None:
-            subprocess.run(["cargo", "build", "--release", "-q", "--bin", "cushion"], cwd=ROOT, check=True)
-            cli = os.path.join(ROOT, "target", "release", "cushion")
-        study = measure(os.path.abspath(cli), args.repeat)
+def run_bench(args):
+    """The measure for `lab.main`; with `--out` elsewhere (another build), the results go there,
+    the table is printed and the docs are left alone (the command ends here)."""
+    cli = os.environ.get("CUSHION_BIN")
+    if cli is None:
+        lab.release("cushion")
+        cli = lab.binary("cushion")
+    study = measure(os.path.abspath(cli), args.repeat)
+    if os.path.abspath(args.out) != RESULTS:
         with open(args.out, "w") as f:
             json.dump(study, f, indent=1)
             f.write("\n")
-        if os.path.abspath(args.out) != RESULTS:
-            print("\n".join(table(study)))
-            return
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+        print("\n".join(table(study)))
+        sys.exit(0)
+    return study
+
+
+def blocks(study):
+    return [(PERFORMANCE, "design-space-sweep", "\n".join(table(study)))]
+
+
+def options(ap):
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--out", default=RESULTS, help="where to write the results (default lab/results/sweep_bench.json)")
+
+
+def main():
+    lab.main(__doc__, RESULTS, run_bench, blocks, options)
 
 
 if __name__ == "__main__":

@@ -10,12 +10,13 @@ Writes lab/results/wide_accuracy.json; the block `wide-accuracy` of docs/accurac
 from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
+from lab.study import sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "wide_accuracy.json")
@@ -34,7 +35,8 @@ ROW = re.compile(r"^(\w+)\s+(\S+)\s+(\S+)\s+(\S+)\s+(.*)$")
 DIFFER = re.compile(r"^impact counts differ in (\d+) runs")
 
 
-def measure(scenes):
+def measure(args):
+    scenes = args.scenes
     out = subprocess.run(["cargo", "run", "--release", "-q", "-p", "cushion-studies", "--bin", "wide_accuracy", "--",
                           str(scenes)], cwd=ROOT, capture_output=True, text=True, check=True).stdout
     study = {"fields": {}}
@@ -51,13 +53,6 @@ def measure(scenes):
     return study
 
 
-def sci(x):
-    if x == 0:
-        return "0"
-    m, e = f"{x:.1e}".split("e")
-    return f"{m}e{int(e)}"
-
-
 def table(study):
     out = ["| | median | 99th percentile | largest |", "|---|---|---|---|"]
     for k, label in LABELS.items():
@@ -68,25 +63,13 @@ def table(study):
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(ACCURACY, "wide-accuracy", "\n".join(table(study)), "lab/results/wide_accuracy.json")
+def blocks(study):
+    return [(ACCURACY, "wide-accuracy", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--scenes", type=int, default=4000)
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = measure(args.scenes)
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks,
+             options=lambda ap: ap.add_argument("--scenes", type=int, default=4000))
 
 
 if __name__ == "__main__":

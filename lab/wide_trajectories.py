@@ -11,12 +11,13 @@ Writes lab/results/wide_trajectories.json (every listed mismatch, filtered or no
 `wide-trajectories` of docs/accuracy.md is drawn from it (here and by `python3 -m lab.make_docs`).
 """
 
-import argparse
-import json
 import os
 import re
 import subprocess
 import sys
+
+from lab import study as lab
+from lab.study import rt
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "lab", "results", "wide_trajectories.json")
@@ -53,31 +54,22 @@ def counted(m):
 def table(study):
     out = ["| tolerance | runs |", "|---|---|"]
     for r in study["runs"]:
-        label = "each scene's own (1e-9 to 1e-3)" if r["rtol"] is None else "rtol {}e{}".format(
-            *(lambda m, e: (m, int(e)))(*f"{r['rtol']:.0e}".split("e")))
+        label = "each scene's own (1e-9 to 1e-3)" if r["rtol"] is None else f"rtol {rt(r['rtol'])}"
         runs = len({m["scene"] for m in r["mismatches"] if counted(m)})
         out.append(f"| {label} | {runs} |")
     return out
 
 
-def write_block(study):
-    from lab.make_docs import replace_block
-    return replace_block(ACCURACY, "wide-trajectories", "\n".join(table(study)), "lab/results/wide_trajectories.json")
+def measure(args=None):
+    return {"scenes": SCENES, "force_floor": FORCE_FLOOR, "runs": [run(r) for r in TOLERANCES]}
+
+
+def blocks(study):
+    return [(ACCURACY, "wide-trajectories", "\n".join(table(study)))]
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--tables", action="store_true", help="only rewrite the docs' block from the results")
-    args = ap.parse_args()
-    if not args.tables:
-        study = {"scenes": SCENES, "force_floor": FORCE_FLOOR, "runs": [run(r) for r in TOLERANCES]}
-        with open(RESULTS, "w") as f:
-            json.dump(study, f, indent=1)
-            f.write("\n")
-    with open(RESULTS) as f:
-        study = json.load(f)
-    print("\n".join(table(study)))
-    sys.exit(0 if write_block(study) else 1)
+    lab.main(__doc__, RESULTS, measure, blocks)
 
 
 if __name__ == "__main__":
