@@ -74,3 +74,38 @@ def copy_sweep(tmp: Path, name: str) -> Path:
     dst = tmp / name
     shutil.copy(ROOT / "sweeps" / name, dst)
     return dst
+
+
+_INTERRUPTED = r"""
+import sys, cushion
+config, out = {config!r}, {out!r}
+def progress(done, total):
+    print(done, flush=True)
+try:
+    cushion.{call}(config, out=out, threads=1, progress=progress)
+except KeyboardInterrupt:
+    print("interrupted", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+def interrupt(call: str, config, out: Path, after: int) -> tuple[int | None, str, str]:
+    """Run `cushion.<call>(config, out=out, threads=1, progress=...)` in a child Python and
+    press Ctrl-C (SIGINT) once it reports `after` runs done; its exit status (3 where the call
+    raised KeyboardInterrupt), the rest of its output and its stderr."""
+    import signal
+    import sys
+
+    child = subprocess.Popen(
+        [sys.executable, "-c", _INTERRUPTED.format(call=call, config=config, out=str(out))],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    for line in child.stdout:
+        if line.strip().isdigit() and int(line) >= after:
+            child.send_signal(signal.SIGINT)
+            break
+    rest, err = child.communicate(timeout=120)
+    return child.returncode, rest, err

@@ -5,15 +5,12 @@ raising KeyboardInterrupt with nothing written."""
 from __future__ import annotations
 
 import json
-import signal
-import subprocess
-import sys
 
 import pandas as pd
 import pytest
 
 import cushion
-from conftest import ROOT
+from conftest import ROOT, interrupt
 
 SCENE = str(ROOT / "sweeps" / "scenes" / "paper-hydraulic-dt70.toml")
 
@@ -146,35 +143,11 @@ def test_design_map(answered, tmp_path):
     assert len(fig.axes) == 2
 
 
-CHILD = r"""
-import sys, cushion
-config, out = {config!r}, {out!r}
-def progress(done, total):
-    print(done, flush=True)
-try:
-    cushion.design(config, out=out, threads=1, progress=progress)
-except KeyboardInterrupt:
-    print("interrupted", flush=True)
-    sys.exit(3)
-print("finished", flush=True)
-"""
-
-
 def test_ctrl_c_stops_a_question_and_writes_nothing(tmp_path):
     # The paper's question at the default resolution (1/64) and verification: about 22,000
     # runs, some seconds on one thread; Ctrl-C once the first runs are reported.
     config = small(search={"resolution": 1 / 64, "verify": 41})
     out = tmp_path / "out"
-    child = subprocess.Popen(
-        [sys.executable, "-c", CHILD.format(config=config, out=str(out))],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    for line in child.stdout:
-        if line.strip().isdigit() and int(line) > 0:
-            child.send_signal(signal.SIGINT)
-            break
-    rest, err = child.communicate(timeout=120)
-    assert child.returncode == 3 and "interrupted" in rest, (child.returncode, rest, err)
+    status, rest, err = interrupt("design", config, out, after=1)
+    assert status == 3 and "interrupted" in rest, (status, rest, err)
     assert not out.exists(), sorted(p.name for p in out.iterdir())

@@ -5,9 +5,6 @@ from __future__ import annotations
 
 import json
 import os
-import signal
-import subprocess
-import sys
 import threading
 from pathlib import Path
 
@@ -15,7 +12,7 @@ import pandas as pd
 import pytest
 
 import cushion
-from conftest import ROOT, copy_sweep
+from conftest import ROOT, copy_sweep, interrupt
 
 # Short scenes (t_end 0.12 s), two modules: a few hundred runs a second per core.
 SMALL = {
@@ -148,36 +145,12 @@ def test_two_threads_sweep_in_parallel():
     assert inside("a", "b") or inside("b", "a"), reports
 
 
-CHILD = r"""
-import sys, cushion
-config, out = {config!r}, {out!r}
-def progress(done, total):
-    print(done, flush=True)
-try:
-    cushion.sweep(config, out=out, threads=1, progress=progress)
-except KeyboardInterrupt:
-    print("interrupted", flush=True)
-    sys.exit(3)
-print("finished", flush=True)
-"""
-
-
 def test_ctrl_c_stops_a_sweep_and_resume_finishes_it(tmp_path):
     config = _long_sweep(4096)
     out = tmp_path / "out"
-    child = subprocess.Popen(
-        [sys.executable, "-c", CHILD.format(config=config, out=str(out))],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
     # wait until a few chunks are done, then press Ctrl-C
-    for line in child.stdout:
-        if line.strip().isdigit() and int(line) >= 256:
-            child.send_signal(signal.SIGINT)
-            break
-    rest, err = child.communicate(timeout=120)
-    assert child.returncode == 3 and "interrupted" in rest, (child.returncode, rest, err)
+    status, rest, err = interrupt("sweep", config, out, after=256)
+    assert status == 3 and "interrupted" in rest, (status, rest, err)
     assert not (out / "summary.parquet").exists()
     chunks = sorted((out / ".sweep").glob("chunk-*.parquet"))
     assert chunks, "the finished chunks are kept"
