@@ -132,10 +132,7 @@ impl Climb {
     /// The points of the current stencil, building it if needed.
     pub(crate) fn poll(&mut self, continuous: &[bool]) -> Vec<Coord> {
         let (center, step) = (&self.center, self.step);
-        let (faces, half) = (
-            self.phase == Phase::Faces,
-            self.half_first && self.polls == 0,
-        );
+        let (faces, half) = (self.phase == Phase::Faces, self.polls_half_step_next());
         let stencil = self.poll.get_or_insert_with(|| {
             let mut pairs = Vec::new();
             for (i, _) in continuous.iter().enumerate().filter(|(_, &c)| c) {
@@ -225,6 +222,12 @@ impl Climb {
         }
     }
 
+    /// Whether the next stencil also polls at half the step: the first of a start off the
+    /// grid's local worst cases.
+    fn polls_half_step_next(&self) -> bool {
+        self.half_first && self.polls == 0
+    }
+
     /// Where the climb would stop: poll the faces first, the first time.
     fn stop(&mut self) {
         match self.phase {
@@ -240,7 +243,7 @@ impl Climb {
             && self.step == other.step
             && self.halvings == other.halvings
             && self.phase == other.phase
-            && (self.half_first && self.polls == 0) == (other.half_first && other.polls == 0)
+            && self.polls_half_step_next() == other.polls_half_step_next()
     }
 }
 
