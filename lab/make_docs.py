@@ -8,7 +8,9 @@ copied by hand. It writes:
 
 - docs/performance.md, `work-precision-dt70`, `work-precision-peer`, `work-precision-order`,
   `work-precision-steel`: the work-precision study's tables (lab/study_tables.py) from
-  lab/results/work_precision.json;
+  lab/results/work_precision.json; `work-precision-ledger`, `-steel-notes`, `-oscillator`,
+  `-trajectory` and `engine-behind`: the figures its prose quotes (lab/work_precision_notes.py)
+  from lab/results/work_precision.csv and .json and profile.json;
 - docs/performance.md, `default-method`: `default_method.py --tables` from
   lab/results/default_method*.csv/json;
 - docs/design.md, `design-vs-brute`: `design_vs_brute.py --tables` from
@@ -72,7 +74,7 @@ import re
 import subprocess
 import sys
 
-from lab import study_tables
+from lab import study_tables, work_precision_notes
 from lab.study import sci
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -111,8 +113,11 @@ def work_precision_blocks():
         "work-precision-order": study_tables.order_table(table),
         "work-precision-steel": study_tables.two_readings(table, settled, "steel-stops"),
     }
-    return all(replace_block(PERFORMANCE, name, "\n".join(lines), source)
-               for name, lines in blocks.items())
+    ok = all(replace_block(PERFORMANCE, name, "\n".join(lines), source) for name, lines in blocks.items())
+    source = "lab/results/work_precision.csv, work_precision.json, profile.json"
+    for name, body in work_precision_notes.blocks().items():
+        ok = replace_block(PERFORMANCE, name, body, source) and ok
+    return ok
 
 
 def load(name):

@@ -119,7 +119,31 @@ def level_table(df):
         if m in first:
             cells = [f"{a} / {b}" for a, b in zip(level_cells(first, m), level_cells(settled, m))]
             lines.append(f"| {wp.LABEL.get(m, m)} | " + " | ".join(cells) + " |")
+    lines += ["", "(\"-\": the median never crosses that level on the grid.) The engine's faster method over the "
+              "peer's faster (below 1: the engine ahead; \"-\": a side does not get there):",
+              "", *ratio_lines(first, settled)]
     return "\n".join(lines)
+
+
+def ratio_lines(first, settled):
+    """The engine's fastest over the peer's fastest at each level, first crossing and settled,
+    at the defaults and with the ledger off."""
+    def best(table, methods, t):
+        c = [table[m][t][0] for m in methods if m in table and table[m].get(t)]
+        return min(c) if c else None
+
+    def ratios(table, ours):
+        cells = []
+        for t in LEVELS:
+            a, b = best(table, ours, t), best(table, PEERS, t)
+            cells.append("-" if a is None or b is None else f"{a / b:.2f}")
+        return ", ".join(cells)
+
+    levels = ", ".join(f"1e-{round(-math.log10(t))}" for t in LEVELS)
+    return [f"- at the defaults ({levels}): first crossing {ratios(first, ('dp5', 'dop853'))}; "
+            f"settled {ratios(settled, ('dp5', 'dop853'))};",
+            f"- with the ledger off: first crossing {ratios(first, ('dp5_no_ledger',))}; "
+            f"settled {ratios(settled, ('dp5_no_ledger',))}."]
 
 
 def write_block(path=RESULTS):
