@@ -14,7 +14,7 @@ and splits them by the inclusive cost of the functions that own each part:
 - stepping: the rest of `cushion_ode::solve_observed` outside the parts below (stage arithmetic, error
   norm, controller, dense-output coefficients, the loop's copies and checks);
 - events: `EventScan::scan` (chord bounds, sign tests, location, handlers);
-- observers: the model's observer (`observe::Watchers`): its `on_step` (the peak finder) and its
+- observers: the model's observers (`observe::Watchers`): the peak sampler's `sample` and the
   check for the early end after each step (the ringing tail's checks);
 - after the run: the summary and the ringing tail's closed form and ledger quadrature.
 
@@ -55,8 +55,8 @@ OWNERS = {
     "rhs": [r"OdeSystem<_> for cushion_model::model::Model>::rhs$"],
     "solve": [r"^cushion_ode::solve::solve_observed$"],
     "events": [r"^cushion_ode::events::EventScan<_>::scan$"],
-    "observers": [r"^<cushion_model::observe::Watchers as cushion_ode::observer::Observer<.*>>::on_step$",
-                  r"^cushion_model::observe::Watchers::ends_early$"],
+    "observers": [r"^cushion_model::peaks::sampler::PeakSampler::sample(<.*>)?$",
+                  r"^cushion_model::early_end::watch::PeaksThenEarlyEnd::ends_early$"],
     "run": [r"^cushion_model::simulate::simulate_valid$"],
 }
 LINE = re.compile(r"^\s*([\d,]+) \([ \d.]+%\)\s+(\S.*?):(.+?) \[")

@@ -3,19 +3,19 @@
 //!
 //! - `peaks/`: the peaks of `|F_r|`, `F_c`, the stroke and the gas pressure;
 //! - `early_end/`: the early end, which stops the run once what is left of it is known in
-//!   closed form (`early_end/tail.rs`); off with `solver.early_end = false`;
+//!   closed form (`early_end/tail.rs`); off with `solver.early_end = false`. It reads the peaks
+//!   so far, so it watches behind the peak sampler (`early_end/watch.rs`);
 //! - `observe/recorder.rs`: the trajectory, when one is asked for.
 //!
-//! [`Watchers`] is them as one observer of the integrator (`cushion_ode::Observer`), beside
-//! the model, which answers every question about the system (right-hand side, Jacobian, event
-//! functions and handlers): OrdinaryDiffEq's callbacks beside its problem. A new observer is a
-//! file here and a line in each hook it needs.
+//! Each is an observer of the integrator (`cushion_ode::Observer`) in its own file, and
+//! [`Watchers`] is them as one, a nested pair, beside the model, which answers every question
+//! about the system (right-hand side, Jacobian, event functions and handlers): OrdinaryDiffEq's
+//! `CallbackSet` beside its problem. A new observer is a file that implements
+//! `cushion_ode::Observer<Model, N>`, a field of [`Observed`] and its place in [`Watchers`].
 
 pub(crate) mod recorder;
 
-use cushion_ode::{Control, Method, Observer, State, Step};
-
-use crate::early_end::EarlyEnd;
+use crate::early_end::{EarlyEnd, PeaksThenEarlyEnd};
 use crate::model::Model;
 use crate::peaks::PeakSampler;
 use recorder::Recorder;
@@ -28,80 +28,16 @@ pub(crate) struct Observed {
     pub recorder: Option<Recorder>,
 }
 
+/// The observers of one solve, in the order each hook reaches them.
+pub(crate) type Watchers<'a> = (Option<&'a mut Recorder>, PeaksThenEarlyEnd<'a>);
+
 impl Observed {
     /// The model and, apart, its observers, for `cushion_ode::solve_observed`.
     pub(crate) fn split(&mut self) -> (&mut Model, Watchers<'_>) {
-        let watchers = Watchers {
+        let peaks = PeaksThenEarlyEnd {
             peaks: &mut self.peaks,
-            early_end: &mut self.early_end,
-            recorder: &mut self.recorder,
+            early_end: self.early_end.as_mut(),
         };
-        (&mut self.model, watchers)
-    }
-}
-
-/// The observers of one solve.
-pub(crate) struct Watchers<'a> {
-    peaks: &'a mut PeakSampler,
-    early_end: &'a mut Option<EarlyEnd>,
-    recorder: &'a mut Option<Recorder>,
-}
-
-impl Watchers<'_> {
-    /// The events the model logged go to the recorder.
-    fn record_events(&mut self, model: &Model) {
-        if let Some(r) = self.recorder.as_mut() {
-            r.take_events(model);
-        }
-    }
-
-    /// Whether the early end (if on) ends the run at `(t, y)`.
-    fn ends_early(&mut self, model: &Model, t: f64, y: &[f64]) -> bool {
-        let peaks = &self.peaks.peaks;
-        self.early_end
-            .as_mut()
-            .is_some_and(|e| e.check(model, peaks, t, y))
-    }
-}
-
-impl<const N: usize> Observer<Model, N> for Watchers<'_> {
-    #[inline]
-    fn on_step(&mut self, model: &Model, step: &Step<'_, N>) {
-        if let Some(r) = self.recorder.as_mut() {
-            r.on_step(model, step);
-        }
-        self.peaks.on_step(model, step);
-    }
-
-    #[inline]
-    fn after_step(&mut self, model: &Model, step: &Step<'_, N>, ctl: &mut Control) {
-        if self.ends_early(model, step.t1, step.y1.as_slice()) {
-            ctl.stop();
-        }
-    }
-
-    #[inline]
-    fn after_events(&mut self, model: &Model) {
-        self.peaks.after_event();
-        self.record_events(model);
-    }
-
-    #[inline]
-    fn before_time_stop(&mut self, model: &Model) {
-        self.peaks.before_time_stop(model);
-    }
-
-    #[inline]
-    fn after_time_stop(&mut self, model: &Model, t: f64, y: &State<N>, ctl: &mut Control) {
-        // a robot kink may leave nothing to change (the robot stands, or cruises on)
-        if model.time_stop_was_kink && self.ends_early(model, t, y.as_slice()) {
-            ctl.stop();
-        }
-        self.record_events(model);
-    }
-
-    #[inline]
-    fn after_switch(&mut self, model: &Model, _to: Method) {
-        self.record_events(model);
+        (&mut self.model, (self.recorder.as_mut(), peaks))
     }
 }

@@ -129,7 +129,7 @@ fn resume_after_tail(system: &mut Observed, out: &Outcome, rtol: f64) -> Option<
     let tail = early_end
         .tail
         .take_if(|tail| tail.resume_time().is_some())?;
-    system.peaks.before_time_stop(&system.model);
+    system.peaks.time_stop_ahead(&system.model);
     let (ts, mut y) = tail.resume(&mut system.model, &out.y)?;
     early_end::add_to_ledger(&system.model, &tail, &out.y, ts, rtol, &mut y);
     if let Some(recorder) = system.recorder.as_mut() {

@@ -41,3 +41,107 @@ pub trait Observer<S, const N: usize> {
 
 /// No observer: what [`crate::solve`] runs with.
 impl<S, const N: usize> Observer<S, N> for () {}
+
+/// An observer held by reference: what a caller that keeps its observers passes.
+impl<S, const N: usize, O: Observer<S, N> + ?Sized> Observer<S, N> for &mut O {
+    #[inline]
+    fn on_step(&mut self, sys: &S, step: &Step<'_, N>) {
+        (**self).on_step(sys, step);
+    }
+    #[inline]
+    fn after_step(&mut self, sys: &S, step: &Step<'_, N>, ctl: &mut Control) {
+        (**self).after_step(sys, step, ctl);
+    }
+    #[inline]
+    fn after_events(&mut self, sys: &S) {
+        (**self).after_events(sys);
+    }
+    #[inline]
+    fn before_time_stop(&mut self, sys: &S) {
+        (**self).before_time_stop(sys);
+    }
+    #[inline]
+    fn after_time_stop(&mut self, sys: &S, t: f64, y: &State<N>, ctl: &mut Control) {
+        (**self).after_time_stop(sys, t, y, ctl);
+    }
+    #[inline]
+    fn after_switch(&mut self, sys: &S, to: Method) {
+        (**self).after_switch(sys, to);
+    }
+}
+
+/// An observer that may be absent (a trajectory nobody asked for): `None` sees nothing.
+impl<S, const N: usize, O: Observer<S, N>> Observer<S, N> for Option<O> {
+    #[inline]
+    fn on_step(&mut self, sys: &S, step: &Step<'_, N>) {
+        if let Some(o) = self {
+            o.on_step(sys, step);
+        }
+    }
+    #[inline]
+    fn after_step(&mut self, sys: &S, step: &Step<'_, N>, ctl: &mut Control) {
+        if let Some(o) = self {
+            o.after_step(sys, step, ctl);
+        }
+    }
+    #[inline]
+    fn after_events(&mut self, sys: &S) {
+        if let Some(o) = self {
+            o.after_events(sys);
+        }
+    }
+    #[inline]
+    fn before_time_stop(&mut self, sys: &S) {
+        if let Some(o) = self {
+            o.before_time_stop(sys);
+        }
+    }
+    #[inline]
+    fn after_time_stop(&mut self, sys: &S, t: f64, y: &State<N>, ctl: &mut Control) {
+        if let Some(o) = self {
+            o.after_time_stop(sys, t, y, ctl);
+        }
+    }
+    #[inline]
+    fn after_switch(&mut self, sys: &S, to: Method) {
+        if let Some(o) = self {
+            o.after_switch(sys, to);
+        }
+    }
+}
+
+/// Two observers as one, in the shape of OrdinaryDiffEq's `CallbackSet`: each hook goes to the
+/// first, then to the second (nest pairs for more). Either may end the run; the other still
+/// sees the hook that ended it.
+impl<S, const N: usize, A: Observer<S, N>, B: Observer<S, N>> Observer<S, N> for (A, B) {
+    #[inline]
+    fn on_step(&mut self, sys: &S, step: &Step<'_, N>) {
+        self.0.on_step(sys, step);
+        self.1.on_step(sys, step);
+    }
+    #[inline]
+    fn after_step(&mut self, sys: &S, step: &Step<'_, N>, ctl: &mut Control) {
+        self.0.after_step(sys, step, ctl);
+        self.1.after_step(sys, step, ctl);
+    }
+    #[inline]
+    fn after_events(&mut self, sys: &S) {
+        self.0.after_events(sys);
+        self.1.after_events(sys);
+    }
+    #[inline]
+    fn before_time_stop(&mut self, sys: &S) {
+        self.0.before_time_stop(sys);
+        self.1.before_time_stop(sys);
+    }
+    #[inline]
+    fn after_time_stop(&mut self, sys: &S, t: f64, y: &State<N>, ctl: &mut Control) {
+        self.0.after_time_stop(sys, t, y, ctl);
+        self.1.after_time_stop(sys, t, y, ctl);
+    }
+    #[inline]
+    fn after_switch(&mut self, sys: &S, to: Method) {
+        self.0.after_switch(sys, to);
+        self.1.after_switch(sys, to);
+    }
+}

@@ -39,14 +39,18 @@ def _panel(spec: dict[str, Any]) -> _Panel:
     return _Panel(spec["title"], ylabel, spec["factor"], curves)
 
 
+_POSITIONS_SPEC, _VELOCITIES_SPEC, _GAS_SPEC, _FORCES_SPEC = FIGURE3
 _POSITIONS, _VELOCITIES, _GAS, _FORCES = (_panel(spec) for spec in FIGURE3)
 _F_R = next(c for c in _FORCES.curves if c.column == "F_r")
 # The comparison's second row: the force on the robot alone, in the forces panel's unit and colour.
 _ROBOT_FORCE = _Panel(
-    "Force on the robot", f"force on the robot $F_r$ [{FIGURE3[3]['unit']}]", _FORCES.factor, (_F_R._replace(label="$F_r$"),)
+    "Force on the robot", f"force on the robot $F_r$ [{_FORCES_SPEC['unit']}]", _FORCES.factor,
+    (_F_R._replace(label="$F_r$"),),
 )
 # The dashed event lines: (label, summary field, colour).
 _MARKS = tuple((m["label"], m["field"], m["color"]) for m in FIGURE3_MARKS)
+# The event whose first time a mark's summary field reports (for a run recorded without a summary).
+_EVENT_OF_FIELD = {"t_detect": "sensor", "t_brake": "brake"}
 
 
 def _first_event(run: Any, name: str) -> float | None:
@@ -62,7 +66,7 @@ def marks(run: Any) -> dict[str, float | None]:
     s = run.summary
     if s is not None:
         return {label: s.get(field) for label, field, _ in _MARKS}
-    return {"detection": _first_event(run, "sensor"), "brake start": _first_event(run, "brake")}
+    return {label: _first_event(run, _EVENT_OF_FIELD[field]) for label, field, _ in _MARKS}
 
 
 def _window(run: Any, t_max: float | None) -> dict[str, np.ndarray]:

@@ -1,9 +1,9 @@
 //! The early end (`solver.early_end`): a run ends once nothing a summary reports can change any
 //! more, and what is left of it is known in closed form, its [`Tail`]. [`EarlyEnd::check`] is
-//! the one entry point: an observer of the run (`observe.rs`) asks it at every step and robot
-//! kink whether the run may end there, and it keeps the tail when it may. The tail then gives
-//! the final state at `t_end`, the robot's kinks, the energy ledger's terms and the trajectory's
-//! last samples.
+//! the one entry point: its observer (`watch.rs`, behind the peak sampler) asks it at every
+//! step and robot kink whether the run may end there, and it keeps the tail when it may. The
+//! tail then gives the final state at `t_end`, the robot's kinks, the energy ledger's terms and
+//! the trajectory's last samples.
 //!
 //! Which tail is left, the first that applies:
 //! - **settled** (`settled.rs`): the robot stands, the tool has settled, the object is done
@@ -34,9 +34,11 @@ mod ringing_search;
 mod ringing_tail;
 mod settled;
 mod tail;
+mod watch;
 
 pub(crate) use ledger::add_to_ledger;
 pub(crate) use tail::Tail;
+pub(crate) use watch::PeaksThenEarlyEnd;
 
 use crate::model::Model;
 use crate::peaks::Peaks;

@@ -3,7 +3,7 @@
 //! each step's dense output; `simulate` composes it with the model (`observe.rs`) only when a
 //! trajectory is asked for.
 
-use cushion_ode::Step;
+use cushion_ode::{Control, Method, Observer, State, Step};
 
 use crate::early_end::Tail;
 use crate::model::{to_point, Model};
@@ -44,7 +44,7 @@ impl Recorder {
 
     /// The uniform samples inside an accepted step and its end, in the step's regime and
     /// robot segment (the model's observers have not moved on yet).
-    pub fn on_step<const N: usize>(&mut self, model: &Model, step: &Step<'_, N>) {
+    fn record_step<const N: usize>(&mut self, model: &Model, step: &Step<'_, N>) {
         let (t0, t1) = (step.t0, step.t1);
         let seg = *model.robot.segment_at(0.5 * (t0 + t1));
         let r = *model.step_regime();
@@ -116,5 +116,29 @@ impl Recorder {
                 .all(|(x, y)| x.to_bits() == y.to_bits())
         });
         Trajectory { points: pts }
+    }
+}
+
+/// The recorder watches a run when a trajectory is asked for: every accepted step, and the
+/// events the model logged at each instant, time stop and change of method.
+impl<const N: usize> Observer<Model, N> for Recorder {
+    #[inline]
+    fn on_step(&mut self, model: &Model, step: &Step<'_, N>) {
+        self.record_step(model, step);
+    }
+
+    #[inline]
+    fn after_events(&mut self, model: &Model) {
+        self.take_events(model);
+    }
+
+    #[inline]
+    fn after_time_stop(&mut self, model: &Model, _t: f64, _y: &State<N>, _ctl: &mut Control) {
+        self.take_events(model);
+    }
+
+    #[inline]
+    fn after_switch(&mut self, model: &Model, _to: Method) {
+        self.take_events(model);
     }
 }

@@ -13,7 +13,7 @@ use super::top_step::Unstable;
 use super::tracker::{top_window, Peak, PeakTracker};
 use crate::model::{Eval, Model, Regime};
 use crate::physics::Segment;
-use cushion_ode::Step;
+use cushion_ode::{Observer, Step};
 
 /// Samples of the physics per step (besides its start).
 pub(crate) const K: usize = 4;
@@ -117,15 +117,10 @@ impl PeakSampler {
         }
     }
 
-    /// An event was handled: the next two steps are sampled in full.
-    pub fn after_event(&mut self) {
-        self.force_sample = 2;
-    }
-
     /// A time stop is about to be handled (the robot's acceleration jumps there): the next two
     /// steps are sampled in full, and the next step's start too when the force on the tool
     /// jumps with the robot's acceleration (a rigid or stuck tool).
-    pub fn before_time_stop(&mut self, model: &Model) {
+    pub fn time_stop_ahead(&mut self, model: &Model) {
         self.force_sample = 2;
         self.sample_start = model.tool_moves_with_robot();
     }
@@ -166,7 +161,7 @@ impl PeakSampler {
 
     /// Sample an accepted step, in the regime and robot segment it ran in (`model`'s handlers
     /// may already have moved its regime on: `Model::step_regime`).
-    pub fn on_step<const N: usize>(&mut self, model: &Model, step: &Step<'_, N>) {
+    fn sample<const N: usize>(&mut self, model: &Model, step: &Step<'_, N>) {
         let (t0, t1) = (step.t0, step.t1);
         let y1 = step.y1.as_slice();
         let seg = *model.robot.segment_at(0.5 * (t0 + t1));
@@ -331,6 +326,25 @@ impl PeakSampler {
         if let Some(u) = unstable {
             self.halves_evals += u.evals;
         }
+    }
+}
+
+/// The peak sampler watches every run: each accepted step is sampled, and after an event or
+/// before a time stop the next steps in full.
+impl<const N: usize> Observer<Model, N> for PeakSampler {
+    #[inline]
+    fn on_step(&mut self, model: &Model, step: &Step<'_, N>) {
+        self.sample(model, step);
+    }
+
+    #[inline]
+    fn after_events(&mut self, _model: &Model) {
+        self.force_sample = 2;
+    }
+
+    #[inline]
+    fn before_time_stop(&mut self, model: &Model) {
+        self.time_stop_ahead(model);
     }
 }
 

@@ -103,3 +103,52 @@ fn an_observer_can_end_the_run() {
     assert_eq!(sol.stats.steps, 5);
     assert_eq!(sol.t, watch.last_t1, "it ends where the fifth step ends");
 }
+
+#[test]
+fn a_pair_of_observers_each_sees_every_hook_and_either_ends_the_run() {
+    let y0 = State::<2>::new(0.0, 2.0);
+    let plain = solve(
+        &mut ScheduledBrake::new(0.07),
+        0.0,
+        y0,
+        1.0,
+        &opts(Method::Dp5),
+    );
+    let mut first = Watch::default();
+    let mut absent: Option<Watch> = None;
+    let mut pair = (&mut first, (&mut absent, Watch::default()));
+    let seen = solve_observed(
+        &mut ScheduledBrake::new(0.07),
+        &mut pair,
+        0.0,
+        y0,
+        1.0,
+        &opts(Method::Dp5),
+    );
+    let second = &pair.1 .1;
+    assert_eq!((seen.t, seen.y), (plain.t, plain.y), "same solution");
+    for watch in [&*pair.0, second] {
+        assert_eq!(watch.steps, plain.stats.steps);
+        assert_eq!(watch.event_instants, 1);
+        assert_eq!(watch.braking_around_stop, [(false, true)]);
+    }
+    assert!(absent.is_none());
+
+    // the second of the pair ends the run; the first still saw the step that ended it
+    let mut first = Watch::default();
+    let second = Watch {
+        stop_after: Some(7),
+        ..Default::default()
+    };
+    let mut pair = (&mut first, second);
+    let sol = solve_observed(
+        &mut ScheduledBrake::new(0.07),
+        &mut pair,
+        0.0,
+        y0,
+        1.0,
+        &opts(Method::Dp5),
+    );
+    assert_eq!(sol.status, Status::StoppedByEvent);
+    assert_eq!((sol.stats.steps, first.steps), (7, 7));
+}
