@@ -28,6 +28,10 @@ def us(seconds):
     return f"{float(seconds) * 1e6:,.0f} µs"
 
 
+def ns_per_evaluation(row):
+    return float(row["seconds"]) / float(row["rhs_evals"]) * 1e9
+
+
 def ratios(table, ours, theirs):
     """The fastest of `ours` over the fastest of `theirs` at each level ('-' where either side
     does not get there)."""
@@ -66,7 +70,7 @@ def steel_block(table, settled):
 def oscillator_block(r):
     row = lambda m, rtol: r[("oscillator", m, f"rtol={rtol}", FINAL)]
     dp5, hairer, rk45 = row("dp5", "1e-6"), row("hairer-dopri5", "1e-6"), row("cyrk-RK45", "1e-6")
-    ns = lambda x: float(x["seconds"]) / float(x["rhs_evals"]) * 1e9
+    ns = ns_per_evaluation
     d853 = [(row("dop853", k), row("cyrk-DOP853", k), row("hairer-dop853", k)) for k in ("1e-6", "1e-9")]
     return (f"`dp5` at rtol 1e-6 takes {int(dp5['rhs_evals']):,} evaluations (Hairer's DOPRI5: "
             f"{int(hairer['rhs_evals']):,}) to an error of {sci(float(dp5['error']))} (Hairer's: "
@@ -108,7 +112,7 @@ def trajectory_block(r):
 def behind_block(r, table):
     """The figures of "Where the engine is behind"."""
     steel = lambda m: r[("steel-stops", m, "rtol=1e-6", FINAL)]
-    ns = lambda x: float(x["seconds"]) / float(x["rhs_evals"]) * 1e9
+    ns = ns_per_evaluation
     ours = [ns(steel(m)) for m in ("dp5", "dop853")]
     with open(os.path.join(RESULTS, "profile.json")) as f:
         case = next(c for c in json.load(f)["cases"] if c["label"].startswith("steel stops"))

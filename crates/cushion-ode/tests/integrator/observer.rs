@@ -4,7 +4,8 @@
 
 use cushion_ode::test_models::scheduled_brake::ScheduledBrake;
 use cushion_ode::{
-    solve, solve_observed, Control, Method, Observer, SolverOptions, State, Status, Step, Tolerance,
+    solve, solve_observed, Control, Method, Observer, Solution, SolverOptions, State, Status, Step,
+    Tolerance,
 };
 
 #[derive(Default)]
@@ -104,6 +105,19 @@ fn an_observer_can_end_the_run() {
     assert_eq!(sol.t, watch.last_t1, "it ends where the fifth step ends");
 }
 
+/// The scheduled brake from rest under DOPRI5, watched by `watch`.
+fn brake_run<O: Observer<ScheduledBrake, 2>>(watch: &mut O) -> Solution<2> {
+    let y0 = State::<2>::new(0.0, 2.0);
+    solve_observed(
+        &mut ScheduledBrake::new(0.07),
+        watch,
+        0.0,
+        y0,
+        1.0,
+        &opts(Method::Dp5),
+    )
+}
+
 #[test]
 fn a_pair_of_observers_each_sees_every_hook_and_either_ends_the_run() {
     let y0 = State::<2>::new(0.0, 2.0);
@@ -117,14 +131,7 @@ fn a_pair_of_observers_each_sees_every_hook_and_either_ends_the_run() {
     let mut first = Watch::default();
     let mut absent: Option<Watch> = None;
     let mut pair = (&mut first, (&mut absent, Watch::default()));
-    let seen = solve_observed(
-        &mut ScheduledBrake::new(0.07),
-        &mut pair,
-        0.0,
-        y0,
-        1.0,
-        &opts(Method::Dp5),
-    );
+    let seen = brake_run(&mut pair);
     let second = &pair.1 .1;
     assert_eq!((seen.t, seen.y), (plain.t, plain.y), "same solution");
     for watch in [&*pair.0, second] {
@@ -141,14 +148,7 @@ fn a_pair_of_observers_each_sees_every_hook_and_either_ends_the_run() {
         ..Default::default()
     };
     let mut pair = (&mut first, second);
-    let sol = solve_observed(
-        &mut ScheduledBrake::new(0.07),
-        &mut pair,
-        0.0,
-        y0,
-        1.0,
-        &opts(Method::Dp5),
-    );
+    let sol = brake_run(&mut pair);
     assert_eq!(sol.status, Status::StoppedByEvent);
     assert_eq!((sol.stats.steps, first.steps), (7, 7));
 }
